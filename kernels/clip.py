@@ -1,0 +1,351 @@
+"""Homogeneous clipping, perspective divide, viewport mapping and snapping.
+
+Clipping happens before the divide (so vertices with w = 0, the shadow-volume
+extrusion to infinity, and primitives crossing w = 0 are handled) against:
+
+* the near and far planes ``-w <= z <= w`` (which also imply ``w >= 0``);
+* a guard band ``|x| <= gx*w``, ``|y| <= gy*w`` far outside the viewport, chosen by
+  the caller so that snapped fixed-point coordinates stay below 2**24.
+
+Pixels outside the viewport are removed later by the raster rectangle (scissor), so
+x/y clipping rarely creates vertices and edges keep their exact direction.
+
+Watertightness across clipped shared edges: an edge is always intersected from its
+lexicographically smaller endpoint, so two triangles sharing an edge compute the
+bit-identical intersection point.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .options import inline, jit
+
+SUBPIXEL_BITS = 8
+ONE = 1 << SUBPIXEL_BITS
+# Window coordinates are clamped to +-COORD_LIMIT pixels (the guard band keeps real
+# geometry far inside): fixed values stay below 2**24 and edge products below 2**50.
+COORD_LIMIT = 1 << 16
+MAX_POLY = 12  # 3 vertices + at most one more per clip plane (6), with slack
+N_PLANES = 6
+
+
+@inline
+def _dist(x, y, z, w, plane, gx, gy):
+    if plane == 0:
+        return w + z
+    if plane == 1:
+        return w - z
+    if plane == 2:
+        return gx * w - x
+    if plane == 3:
+        return gx * w + x
+    if plane == 4:
+        return gy * w - y
+    return gy * w + y
+
+
+@jit
+def outcodes(v, gx, gy):
+    """Bit p set when a vertex is outside clip plane p (or not finite).
+
+    Parameters
+    ----------
+    v : ndarray, shape (N, 4), float64
+        Clip-space positions.
+    gx, gy : float
+        Guard-band half extents in normalized device units.
+
+    Returns
+    -------
+    ndarray, shape (N,), uint8
+    """
+    n = v.shape[0]
+    out = np.zeros(n, dtype=np.uint8)
+    for i in range(n):
+        x, y, z, w = v[i, 0], v[i, 1], v[i, 2], v[i, 3]
+        if not (np.isfinite(x) and np.isfinite(y) and np.isfinite(z) and np.isfinite(w)):
+            out[i] = 0xFF
+            continue
+        c = 0
+        for p in range(N_PLANES):
+            if not (_dist(x, y, z, w, p, gx, gy) >= 0.0):
+                c |= 1 << p
+        out[i] = c
+    return out
+
+
+@inline
+def _lex_less(a, b):
+    for k in range(4):
+        if a[k] < b[k]:
+            return True
+        if a[k] > b[k]:
+            return False
+    return False
+
+
+@jit
+def clip_triangles(v, attr, tris, gx, gy):
+    """Clip triangles in homogeneous space.
+
+    Parameters
+    ----------
+    v : ndarray, shape (Nv, 4), float64
+        Clip-space vertex positions.
+    attr : ndarray, shape (Nv, K), float64
+        Per-vertex attributes interpolated linearly in clip space (colour, ...).
+    tris : ndarray, shape (Nt, 3), int64
+        Vertex indices of each triangle.
+    gx, gy : float
+        Guard band (see module docstring).
+
+    Returns
+    -------
+    out_v : ndarray, shape (M, 4), float64
+        Input vertices followed by the vertices created by clipping.
+    out_attr : ndarray, shape (M, K), float64
+    out_tris : ndarray, shape (T, 3), int64
+        Surviving triangles, in input order (clipped polygons fanned in place).
+    out_src : ndarray, shape (T,), int64
+        Index of the input triangle each output triangle came from.
+    """
+    nv = v.shape[0]
+    nt = tris.shape[0]
+    k = attr.shape[1]
+    code = outcodes(v, gx, gy)
+    # Pass 1: how many triangles need real clipping.
+    nclip = 0
+    for t in range(nt):
+        a, b, c = tris[t, 0], tris[t, 1], tris[t, 2]
+        if (code[a] | code[b] | code[c]) != 0 and (code[a] & code[b] & code[c]) == 0:
+            if code[a] == 0xFF or code[b] == 0xFF or code[c] == 0xFF:
+                continue
+            nclip += 1
+    out_v = np.empty((nv + nclip * MAX_POLY, 4), dtype=np.float64)
+    out_attr = np.empty((nv + nclip * MAX_POLY, k), dtype=np.float64)
+    out_v[:nv] = v
+    out_attr[:nv] = attr
+    out_tris = np.empty((nt + nclip * (MAX_POLY - 3), 3), dtype=np.int64)
+    out_src = np.empty(nt + nclip * (MAX_POLY - 3), dtype=np.int64)
+    poly = np.empty((MAX_POLY, 4 + k), dtype=np.float64)
+    tmp = np.empty((MAX_POLY, 4 + k), dtype=np.float64)
+    nvo = nv
+    nto = 0
+    for t in range(nt):
+        a, b, c = tris[t, 0], tris[t, 1], tris[t, 2]
+        ca, cb, cc = code[a], code[b], code[c]
+        if (ca | cb | cc) == 0:
+            out_tris[nto, 0] = a
+            out_tris[nto, 1] = b
+            out_tris[nto, 2] = c
+            out_src[nto] = t
+            nto += 1
+            continue
+        if (ca & cb & cc) != 0 or ca == 0xFF or cb == 0xFF or cc == 0xFF:
+            continue
+        # Sutherland-Hodgman against each plane some vertex is outside of.
+        for j in range(3):
+            src = tris[t, j]
+            for q in range(4):
+                poly[j, q] = v[src, q]
+            for q in range(k):
+                poly[j, 4 + q] = attr[src, q]
+        n = 3
+        planes = ca | cb | cc
+        for p in range(N_PLANES):
+            if not (planes >> p) & 1:
+                continue
+            m = 0
+            for i in range(n):
+                i2 = (i + 1) % n
+                d1 = _dist(poly[i, 0], poly[i, 1], poly[i, 2], poly[i, 3], p, gx, gy)
+                d2 = _dist(poly[i2, 0], poly[i2, 1], poly[i2, 2], poly[i2, 3], p, gx, gy)
+                in1 = d1 >= 0.0
+                in2 = d2 >= 0.0
+                if in1:
+                    for q in range(4 + k):
+                        tmp[m, q] = poly[i, q]
+                    m += 1
+                if in1 != in2:
+                    # Intersect from the lexicographically smaller endpoint.
+                    if _lex_less(poly[i2], poly[i]):
+                        lo, hi, dlo, dhi = i2, i, d2, d1
+                    else:
+                        lo, hi, dlo, dhi = i, i2, d1, d2
+                    s = dlo / (dlo - dhi)
+                    for q in range(4 + k):
+                        tmp[m, q] = poly[lo, q] + s * (poly[hi, q] - poly[lo, q])
+                    m += 1
+            n = m
+            for i in range(n):
+                for q in range(4 + k):
+                    poly[i, q] = tmp[i, q]
+            if n < 3:
+                break
+        if n < 3:
+            continue
+        ok = True
+        for i in range(n):
+            if not (poly[i, 3] > 0.0) or not np.isfinite(poly[i, 0] + poly[i, 1] + poly[i, 2]):
+                ok = False  # touches the eye point: edge-on, covers nothing
+        if not ok:
+            continue
+        base = nvo
+        for i in range(n):
+            for q in range(4):
+                out_v[nvo, q] = poly[i, q]
+            for q in range(k):
+                out_attr[nvo, q] = poly[i, 4 + q]
+            nvo += 1
+        for i in range(1, n - 1):
+            out_tris[nto, 0] = base
+            out_tris[nto, 1] = base + i
+            out_tris[nto, 2] = base + i + 1
+            out_src[nto] = t
+            nto += 1
+    return out_v[:nvo], out_attr[:nvo], out_tris[:nto], out_src[:nto]
+
+
+@jit
+def project_snap(v, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel):
+    """Divide by w, map to IRIS window coordinates and snap to fixed point.
+
+    Implements docs/numeric_model.md sections 1-2.
+
+    Parameters
+    ----------
+    v : ndarray, shape (N, 4), float64
+        Clip-space positions (w > 0 for every vertex a primitive uses).
+    vp_l, vp_r, vp_b, vp_t : int
+        Inclusive viewport bounds.
+    znear, zfar : float
+        lsetdepth range.
+    subpixel : bool
+        False snaps to pixel centres (IRIS default), True keeps 8 fractional bits.
+
+    Returns
+    -------
+    xf, yf : ndarray, shape (N,), int64
+        Fixed-point window coordinates (pixel centre X is X * 256).
+    zw : ndarray, shape (N,), float64
+        Window depth in lsetdepth units.
+    """
+    n = v.shape[0]
+    xf = np.zeros(n, dtype=np.int64)
+    yf = np.zeros(n, dtype=np.int64)
+    zw = np.zeros(n, dtype=np.float64)
+    hx = (vp_r - vp_l + 1) / 2.0
+    hy = (vp_t - vp_b + 1) / 2.0
+    hz = (zfar - znear) / 2.0
+    limit = float(COORD_LIMIT)
+    for i in range(n):
+        w = v[i, 3]
+        if not (w > 0.0):
+            continue
+        x = (vp_l - 0.5) + (v[i, 0] / w + 1.0) * hx
+        y = (vp_b - 0.5) + (v[i, 1] / w + 1.0) * hy
+        z = znear + (v[i, 2] / w + 1.0) * hz
+        if not (np.isfinite(x) and np.isfinite(y) and np.isfinite(z)):
+            continue
+        x = min(max(x, -limit), limit)
+        y = min(max(y, -limit), limit)
+        if subpixel:
+            xf[i] = np.int64(np.floor(x * ONE + 0.5))
+            yf[i] = np.int64(np.floor(y * ONE + 0.5))
+        else:
+            xf[i] = np.int64(np.floor(x + 0.5)) * ONE
+            yf[i] = np.int64(np.floor(y + 0.5)) * ONE
+        zw[i] = z
+    return xf, yf, zw
+
+
+@jit
+def snap_window(x, y, subpixel):
+    """Snap window coordinates (already in pixel units) to fixed point."""
+    n = x.shape[0]
+    xf = np.empty(n, dtype=np.int64)
+    yf = np.empty(n, dtype=np.int64)
+    limit = float(COORD_LIMIT)
+    for i in range(n):
+        xi = min(max(x[i], -limit), limit)
+        yi = min(max(y[i], -limit), limit)
+        if not (np.isfinite(xi) and np.isfinite(yi)):
+            xi = 0.0
+            yi = 0.0
+        if subpixel:
+            xf[i] = np.int64(np.floor(xi * ONE + 0.5))
+            yf[i] = np.int64(np.floor(yi * ONE + 0.5))
+        else:
+            xf[i] = np.int64(np.floor(xi + 0.5)) * ONE
+            yf[i] = np.int64(np.floor(yi + 0.5)) * ONE
+    return xf, yf
+
+
+@jit
+def clip_segments(v, attr, segs, gx, gy):
+    """Clip line segments in homogeneous space (Liang-Barsky on the six planes).
+
+    Parameters
+    ----------
+    v : ndarray, shape (Nv, 4), float64
+    attr : ndarray, shape (Nv, K), float64
+    segs : ndarray, shape (Ns, 2), int64
+        Vertex indices of each segment.
+    gx, gy : float
+        Guard band, as for :func:`clip_triangles`.
+
+    Returns
+    -------
+    out_v : ndarray, shape (M, 2, 4), float64
+    out_attr : ndarray, shape (M, 2, K), float64
+    out_src : ndarray, shape (M,), int64
+        Surviving (possibly shortened) segments and the segment each came from.
+    out_t0 : ndarray, shape (M,), float64
+        Parameter along the original segment where the kept part starts.
+    """
+    ns = segs.shape[0]
+    k = attr.shape[1]
+    out_v = np.empty((ns, 2, 4), dtype=np.float64)
+    out_attr = np.empty((ns, 2, k), dtype=np.float64)
+    out_src = np.empty(ns, dtype=np.int64)
+    out_t0 = np.empty(ns, dtype=np.float64)
+    m = 0
+    for s in range(ns):
+        a, b = segs[s, 0], segs[s, 1]
+        ok = True
+        for q in range(4):
+            if not (np.isfinite(v[a, q]) and np.isfinite(v[b, q])):
+                ok = False
+        if not ok:
+            continue
+        t0 = 0.0
+        t1 = 1.0
+        for p in range(N_PLANES):
+            da = _dist(v[a, 0], v[a, 1], v[a, 2], v[a, 3], p, gx, gy)
+            db = _dist(v[b, 0], v[b, 1], v[b, 2], v[b, 3], p, gx, gy)
+            if da < 0.0 and db < 0.0:
+                ok = False
+                break
+            if da < 0.0:
+                t = da / (da - db)
+                if t > t0:
+                    t0 = t
+            elif db < 0.0:
+                t = da / (da - db)
+                if t < t1:
+                    t1 = t
+        if not ok or t0 > t1:
+            continue
+        for q in range(4):
+            out_v[m, 0, q] = v[a, q] + t0 * (v[b, q] - v[a, q])
+            out_v[m, 1, q] = v[a, q] + t1 * (v[b, q] - v[a, q])
+        for q in range(k):
+            out_attr[m, 0, q] = attr[a, q] + t0 * (attr[b, q] - attr[a, q])
+            out_attr[m, 1, q] = attr[a, q] + t1 * (attr[b, q] - attr[a, q])
+        if not (out_v[m, 0, 3] > 0.0 and out_v[m, 1, 3] > 0.0):
+            continue
+        out_src[m] = s
+        out_t0[m] = t0
+        m += 1
+    return out_v[:m], out_attr[:m], out_src[:m], out_t0[:m]

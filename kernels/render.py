@@ -1,0 +1,266 @@
+"""The band driver: one kernel call renders a whole command batch.
+
+The window is cut into bands of rows.  Each thread owns every ``nthreads``-th band
+and walks the batch's primitives in their original order, so the per-pixel order
+of stencil and blend operations (part of the semantics) is kept while threads never
+touch the same pixel.  A band of a full frame stays in cache while clears, the
+scene pass, the shadow-volume faces and the lit pass run over it.
+
+Primitive kinds: triangles (set up by :mod:`.setup`), fragment runs (points and
+lines expanded by :mod:`.lines`) and clears.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from .fragment import (
+    D_MODE,
+    D_RGBA,
+    D_SWM,
+    D_ZMASK,
+    MODE_GENERAL,
+    MODE_ZONLY,
+    MODE_ZSTENCIL,
+    S_DRAW_BACK,
+    S_DRAW_FRONT,
+    S_SX0,
+    S_SX1,
+    S_SY0,
+    S_SY1,
+    S_WMPACK,
+    S_ZFUNC,
+    cmp_pass,
+    fragment,
+    round_c,
+    round_z,
+    write_z,
+)
+from .options import jit, parallel_jit
+from .raster import covers, row_span
+
+KIND_TRIANGLE = 0
+KIND_FRAGMENTS = 1
+KIND_CLEAR = 2
+CLEAR_COLOUR, CLEAR_Z, CLEAR_STENCIL = 1, 2, 4
+
+
+@jit
+def bin_primitives(py0, py1, nprims, band_h, nbands):
+    """Bucket primitives into bands of rows, keeping their order.
+
+    Returns
+    -------
+    starts : ndarray, shape (nbands + 1,), int64
+    items : ndarray, int64
+        ``items[starts[b]:starts[b+1]]`` are the primitives touching band b, in order.
+    """
+    counts = np.zeros(nbands + 1, dtype=np.int64)
+    for p in range(nprims):
+        b0 = max(py0[p], 0) // band_h
+        b1 = min(py1[p] // band_h, nbands - 1)
+        for b in range(b0, b1 + 1):
+            counts[b + 1] += 1
+    for b in range(nbands):
+        counts[b + 1] += counts[b]
+    items = np.empty(counts[nbands], dtype=np.int64)
+    fill = counts[:nbands].copy()
+    for p in range(nprims):
+        b0 = max(py0[p], 0) // band_h
+        b1 = min(py1[p] // band_h, nbands - 1)
+        for b in range(b0, b1 + 1):
+            items[fill[b]] = p
+            fill[b] += 1
+    return counts, items
+
+
+@jit
+def _triangle_rows(
+    t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
+    front, back, zbuf, sten, edge_mode, general_only,
+):
+    ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
+    yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
+    xlo = max(t_box[t, 0], st[S_SX0])
+    xhi = min(t_box[t, 1], st[S_SX1])
+    if xlo > xhi:
+        return
+    edge = t_edge[t]
+    z0 = t_z[t, 0]
+    x0 = t_z[t, 1]
+    y0 = t_z[t, 2]
+    dzdx = t_z[t, 3]
+    dzdy = t_z[t, 4]
+    zmin = t_zlim[t, 0]
+    zmax = t_zlim[t, 1]
+    mode = dv[D_MODE]
+    if general_only or edge_mode:
+        mode = MODE_GENERAL
+    colour = dv[D_RGBA] != 0
+    zfunc = st[S_ZFUNC]
+    for y in range(ylo, yhi + 1):
+        if edge_mode:
+            xl, xr = xlo, xhi
+        else:
+            xl, xr = row_span(edge, y, xlo, xhi)
+            if xl > xr:
+                continue
+        za = z0 + dzdy * (y - y0)
+        if mode == MODE_ZSTENCIL:
+            zrow = zbuf[y]
+            srow = sten[y]
+            t0 = tab[0]
+            t1 = tab[1]
+            for x in range(xl, xr + 1):
+                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                s = srow[x]
+                if cmp_pass(zfunc, zi, np.int64(zrow[x])):
+                    srow[x] = t0[s]
+                else:
+                    srow[x] = t1[s]
+        elif mode == MODE_ZONLY:
+            zrow = zbuf[y]
+            for x in range(xl, xr + 1):
+                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                if cmp_pass(zfunc, zi, np.int64(zrow[x])):
+                    zrow[x] = zi
+        else:
+            if colour:
+                ra = t_col[t, 0, 0] + t_col[t, 0, 2] * (y - y0)
+                ga = t_col[t, 1, 0] + t_col[t, 1, 2] * (y - y0)
+                ba = t_col[t, 2, 0] + t_col[t, 2, 2] * (y - y0)
+                aa = t_col[t, 3, 0] + t_col[t, 3, 2] * (y - y0)
+            for x in range(xl, xr + 1):
+                if edge_mode and not covers(edge, x, y):
+                    continue
+                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                rgba = 0
+                if colour:
+                    dx = x - x0
+                    rgba = (
+                        round_c(ra + t_col[t, 0, 1] * dx)
+                        | (round_c(ga + t_col[t, 1, 1] * dx) << 8)
+                        | (round_c(ba + t_col[t, 2, 1] * dx) << 16)
+                        | (round_c(aa + t_col[t, 3, 1] * dx) << 24)
+                    )
+                fragment(x, y, zi, rgba, st, dv, tab, front, back, zbuf, sten)
+
+
+@jit
+def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten):
+    ylo = max(y_lo, st[S_SY0])
+    yhi = min(y_hi, st[S_SY1])
+    xlo = st[S_SX0]
+    xhi = st[S_SX1]
+    planes = c_vals[c, 0]
+    if planes & CLEAR_COLOUR:
+        wm = st[S_WMPACK] & 0xFFFFFFFF
+        val = c_vals[c, 1] & wm
+        keep = ~wm & 0xFFFFFFFF
+        for y in range(ylo, yhi + 1):
+            if st[S_DRAW_BACK]:
+                row = back[y]
+                for x in range(xlo, xhi + 1):
+                    row[x] = (np.int64(row[x]) & keep) | val
+            if st[S_DRAW_FRONT]:
+                row = front[y]
+                for x in range(xlo, xhi + 1):
+                    row[x] = (np.int64(row[x]) & keep) | val
+    if planes & CLEAR_Z:
+        zmask = dv[D_ZMASK]
+        zval = c_vals[c, 2]
+        for y in range(ylo, yhi + 1):
+            row = zbuf[y]
+            for x in range(xlo, xhi + 1):
+                row[x] = write_z(np.int64(row[x]), zval, zmask)
+    if planes & CLEAR_STENCIL:
+        wm = dv[D_SWM]
+        sval = c_vals[c, 3] & wm
+        for y in range(ylo, yhi + 1):
+            row = sten[y]
+            for x in range(xlo, xhi + 1):
+                row[x] = (row[x] & ~wm) | sval
+
+
+@jit
+def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
+                  front, back, zbuf, sten):
+    for f in range(r_range[r, 0], r_range[r, 1]):
+        y = f_xy[f, 1]
+        if y < y_lo or y > y_hi or y < st[S_SY0] or y > st[S_SY1]:
+            continue
+        x = f_xy[f, 0]
+        if x < st[S_SX0] or x > st[S_SX1]:
+            continue
+        fragment(x, y, np.int64(f_z[f]), np.int64(f_rgba[f]), st, dv, tab,
+                 front, back, zbuf, sten)
+
+
+@parallel_jit
+def render_batch(
+    p_kind, p_ref, p_y0, p_y1, nprims,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state,
+    f_xy, f_z, f_rgba, r_range, r_state,
+    c_vals, c_state,
+    states, derived, tables,
+    front, back, zbuf, sten,
+    band_h, edge_mode, general_only, nthreads,
+):
+    """Render ``nprims`` primitives of a batch into the planes.
+
+    Parameters
+    ----------
+    p_kind, p_ref : ndarray, shape (P,), int64
+        Primitive kind (KIND_*) and index into that kind's arrays.
+    p_y0, p_y1 : ndarray, shape (P,), int64
+        Inclusive row range each primitive may touch (for binning).
+    t_edge, t_box, t_z, t_zlim, t_col, t_state : ndarray
+        Set-up triangles (see :func:`vgxsim.kernels.setup.setup_triangles`).
+    f_xy, f_z, f_rgba : ndarray, shapes (F, 2) int64, (F,) int64, (F,) int64
+        Fragments of points and lines; ``r_range`` (R, 2) int64 gives each run's
+        ``[start, end)`` and ``r_state`` (R,) its state.
+    c_vals : ndarray, shape (C, 4), int64
+        Clears: plane bits, packed colour, z, stencil; ``c_state`` (C,) their states.
+    states, derived, tables : ndarray
+        State rows, :func:`derive_states` output.
+    front, back : ndarray, shape (H, W), uint32
+        Colour buffers (a (1, 1) dummy when absent).
+    zbuf : ndarray, shape (H, W), int32; sten : ndarray, shape (H, W), uint8
+        Depth and stencil planes (a (1, 1) dummy when absent).
+    band_h : int
+        Rows per band.
+    edge_mode, general_only : bool
+        Test switches: edge-function rasterizer instead of spans; the general
+        per-fragment path instead of the fast span loops.
+    nthreads : int
+        Number of band groups (``numba.get_num_threads()``); each thread takes every
+        ``nthreads``-th band, which balances load on scenes with uneven depth.
+    """
+    height = max(front.shape[0], back.shape[0], zbuf.shape[0], sten.shape[0])
+    nbands = (height + band_h - 1) // band_h
+    starts, items = bin_primitives(p_y0, p_y1, nprims, band_h, nbands)
+    for tid in numba.prange(nthreads):
+        for b in range(tid, nbands, nthreads):
+            y_lo = b * band_h
+            y_hi = min(y_lo + band_h, height) - 1
+            for i in range(starts[b], starts[b + 1]):
+                p = items[i]
+                kind = p_kind[p]
+                ref = p_ref[p]
+                if kind == KIND_TRIANGLE:
+                    s = t_state[ref]
+                    _triangle_rows(
+                        ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
+                        states[s], derived[s], tables[s],
+                        front, back, zbuf, sten, edge_mode, general_only,
+                    )
+                elif kind == KIND_FRAGMENTS:
+                    s = r_state[ref]
+                    _fragment_run(ref, y_lo, y_hi, f_xy, f_z, f_rgba, r_range,
+                                  states[s], derived[s], tables[s],
+                                  front, back, zbuf, sten)
+                else:
+                    s = c_state[ref]
+                    _clear_rows(ref, y_lo, y_hi, c_vals, states[s], derived[s],
+                                front, back, zbuf, sten)
