@@ -1,0 +1,1 @@
+"""Naive pure-Python reference pipeline: the test oracle for the Numba kernels."""
