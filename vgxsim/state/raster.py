@@ -84,3 +84,10 @@ ROW: dict[str, int] = {name: i for i, name in enumerate(_SCALAR_FIELDS)}
 for _i, _n in enumerate(("sx0", "sx1", "sy0", "sy1")):
     ROW[_n] = len(_SCALAR_FIELDS) + _i
 ROW_SIZE = len(ROW)
+
+
+def needs_colour(rs: RasterState) -> bool:
+    """Whether primitives drawn with ``rs`` need vertex colour at all: colour is
+    written (a draw buffer and a non-zero wmpack) or the alpha test reads alpha."""
+    writes = (rs.draw_front or rs.draw_back) and (rs.wmpack & 0xFFFFFFFF) != 0
+    return writes or rs.afunc != CMP_ALWAYS

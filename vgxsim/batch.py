@@ -1,0 +1,257 @@
+"""The command batch: primitives accumulate here and render in one kernel call.
+
+Every primitive carries the index of its raster-state snapshot, so state changes
+between primitives (the 1991 code changes ``stencil()`` before every shadow face)
+cost one dictionary look-up, not a flush.  The batch is flushed on readback,
+swapbuffers, acbuf, reconfiguration, or when it is full.  Clears are queued as
+primitives too: a band of rows then stays in cache from the clear through every
+pass of a frame.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from vgxsim.kernels.clip import snap_window
+from vgxsim.kernels.fragment import derive_states
+from vgxsim.kernels.render import (
+    CLEAR_COLOUR,
+    CLEAR_STENCIL,
+    CLEAR_Z,
+    KIND_CLEAR,
+    KIND_FRAGMENTS,
+    KIND_TRIANGLE,
+    render_batch,
+)
+from vgxsim.kernels.setup import setup_triangles
+from vgxsim.state.planes import Framebuffer
+from vgxsim.state.raster import FLAT, ROW, ROW_SIZE, RasterState
+
+__all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL"]
+
+BAND_ROWS = 16
+MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
+
+
+def _grow(arr: np.ndarray, need: int) -> np.ndarray:
+    if arr.shape[0] >= need:
+        return arr
+    cap = max(need, 2 * arr.shape[0], 64)
+    out = np.zeros((cap,) + arr.shape[1:], dtype=arr.dtype)
+    out[: arr.shape[0]] = arr
+    return out
+
+
+class CommandBatch:
+    """Queued primitives of one framebuffer, with their state snapshots.
+
+    Parameters
+    ----------
+    framebuffer : Framebuffer
+        Where a flush renders to.
+    """
+
+    def __init__(self, framebuffer: Framebuffer):
+        self.fb = framebuffer
+        self.edge_mode = False  # test switch: edge-function rasterizer
+        self.general_only = False  # test switch: no fast span paths
+        self.flushes = 0
+        self._reset()
+
+    def _reset(self) -> None:
+        self._state_index: dict[RasterState, int] = {}
+        self._state_rows: list[np.ndarray] = []
+        self.nprims = 0
+        self.p_kind = np.zeros(64, np.int64)
+        self.p_ref = np.zeros(64, np.int64)
+        self.p_y0 = np.zeros(64, np.int64)
+        self.p_y1 = np.zeros(64, np.int64)
+        self.ntris = 0
+        self.t_edge = np.zeros((64, 3, 3), np.int64)
+        self.t_box = np.zeros((64, 4), np.int64)
+        self.t_z = np.zeros((64, 5), np.float64)
+        self.t_zlim = np.zeros((64, 2), np.int64)
+        self.t_col = np.zeros((64, 4, 3), np.float64)
+        self.t_state = np.zeros(64, np.int32)
+        self.nfrags = 0
+        self.f_xy = np.zeros((64, 2), np.int64)
+        self.f_z = np.zeros(64, np.int64)
+        self.f_rgba = np.zeros(64, np.int64)
+        self.nruns = 0
+        self.r_range = np.zeros((16, 2), np.int64)
+        self.r_state = np.zeros(16, np.int64)
+        self.nclears = 0
+        self.c_vals = np.zeros((16, 4), np.int64)
+        self.c_state = np.zeros(16, np.int64)
+
+    # -- state ------------------------------------------------------------------
+    def state_index(self, rs: RasterState) -> int:
+        """Index of a snapshot in this batch's state table (added on first use)."""
+        idx = self._state_index.get(rs)
+        if idx is None:
+            idx = len(self._state_rows)
+            self._state_index[rs] = idx
+            self._state_rows.append(rs.as_row())
+        return idx
+
+    def _add_prims(self, kind: int, refs: np.ndarray, y0: np.ndarray, y1: np.ndarray) -> None:
+        n = refs.shape[0]
+        if n == 0:
+            return
+        end = self.nprims + n
+        self.p_kind = _grow(self.p_kind, end)
+        self.p_ref = _grow(self.p_ref, end)
+        self.p_y0 = _grow(self.p_y0, end)
+        self.p_y1 = _grow(self.p_y1, end)
+        self.p_kind[self.nprims:end] = kind
+        self.p_ref[self.nprims:end] = refs
+        self.p_y0[self.nprims:end] = y0
+        self.p_y1[self.nprims:end] = y1
+        self.nprims = end
+
+    def _maybe_flush(self) -> None:
+        if self.nprims >= MAX_PRIMITIVES:
+            self.flush()
+
+    # -- primitives ---------------------------------------------------------------
+    def add_triangles(self, xf, yf, zw, col, tris, src, flat_col, rs: RasterState) -> int:
+        """Set up and queue triangles given in fixed-point window coordinates.
+
+        Parameters
+        ----------
+        xf, yf : ndarray, shape (Nv,), int64
+        zw : ndarray, shape (Nv,), float64
+        col : ndarray, shape (Nv, 4), float64 or None
+            Vertex RGBA in [0, 1]; None when colour is not written.
+        tris : ndarray, shape (Nt, 3), int64
+        src : ndarray, shape (Nt,), int64
+            Source primitive of each triangle (indexes ``flat_col``).
+        flat_col : ndarray, shape (Ns, 4), float64 or None
+            Last-vertex colour of each source primitive (flat shading).
+        rs : RasterState
+
+        Returns
+        -------
+        int
+            Number of triangles queued (after culling and zero-area removal).
+        """
+        nt = tris.shape[0]
+        if nt == 0:
+            return 0
+        s = self.state_index(rs)
+        want_colour = col is not None or flat_col is not None
+        colv = col if col is not None else np.zeros((1, 4))
+        flatv = flat_col if flat_col is not None else np.zeros((1, 4))
+        flat = rs.shademodel == FLAT or col is None
+        end = self.ntris + nt
+        self.t_edge = _grow(self.t_edge, end)
+        self.t_box = _grow(self.t_box, end)
+        self.t_z = _grow(self.t_z, end)
+        self.t_zlim = _grow(self.t_zlim, end)
+        self.t_col = _grow(self.t_col, end)
+        self.t_state = _grow(self.t_state, end)
+        start = self.ntris
+        self.ntris = setup_triangles(
+            xf, yf, zw, colv, tris, src, flatv, s, rs.cull, flat, want_colour,
+            self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state, start,
+        )
+        refs = np.arange(start, self.ntris, dtype=np.int64)
+        self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
+                        self.t_box[start:self.ntris, 3])
+        self._maybe_flush()
+        return self.ntris - start
+
+    def add_window_triangles(self, xw, yw, zw, col, tris, rs: RasterState, flat_col=None) -> int:
+        """Queue triangles given in float IRIS window coordinates (library fast path).
+
+        Non-finite vertices drop their triangles (documented behaviour for NaN/inf).
+        """
+        xw = np.asarray(xw, np.float64)
+        yw = np.asarray(yw, np.float64)
+        zw = np.asarray(zw, np.float64)
+        tris = np.asarray(tris, np.int64).reshape(-1, 3)
+        finite = np.isfinite(xw) & np.isfinite(yw) & np.isfinite(zw)
+        keep = finite[tris].all(axis=1)
+        src = np.nonzero(keep)[0].astype(np.int64)
+        tris = tris[keep]
+        xf, yf = snap_window(np.where(finite, xw, 0.0), np.where(finite, yw, 0.0), rs.subpixel)
+        return self.add_triangles(xf, yf, np.where(finite, zw, 0.0), col, tris, src,
+                                  flat_col, rs)
+
+    def add_fragments(self, xy, z, rgba, rs: RasterState) -> None:
+        """Queue one run of fragments (a point or a line) sharing one state.
+
+        Parameters
+        ----------
+        xy : ndarray, shape (F, 2), int64
+        z : ndarray, shape (F,), int64
+        rgba : ndarray, shape (F,), int64 packed 0xAABBGGRR
+        """
+        n = xy.shape[0]
+        if n == 0:
+            return
+        s = self.state_index(rs)
+        end = self.nfrags + n
+        self.f_xy = _grow(self.f_xy, end)
+        self.f_z = _grow(self.f_z, end)
+        self.f_rgba = _grow(self.f_rgba, end)
+        self.f_xy[self.nfrags:end] = xy
+        self.f_z[self.nfrags:end] = z
+        self.f_rgba[self.nfrags:end] = rgba
+        self.r_range = _grow(self.r_range, self.nruns + 1)
+        self.r_state = _grow(self.r_state, self.nruns + 1)
+        self.r_range[self.nruns] = (self.nfrags, end)
+        self.r_state[self.nruns] = s
+        self._add_prims(KIND_FRAGMENTS, np.array([self.nruns]), np.array([xy[:, 1].min()]),
+                        np.array([xy[:, 1].max()]))
+        self.nruns += 1
+        self.nfrags = end
+        self._maybe_flush()
+
+    def add_clear(self, planes: int, colour: int, z: int, stencil: int, rs: RasterState) -> None:
+        """Queue a clear of the raster rectangle of ``rs`` (planes: CLEAR_* bits)."""
+        fb = self.fb
+        if fb.z is None:
+            planes &= ~CLEAR_Z
+        if fb.stencil is None:
+            planes &= ~CLEAR_STENCIL
+        if planes == 0:
+            return
+        s = self.state_index(rs)
+        self.c_vals = _grow(self.c_vals, self.nclears + 1)
+        self.c_state = _grow(self.c_state, self.nclears + 1)
+        self.c_vals[self.nclears] = (planes, colour & 0xFFFFFFFF, z, stencil)
+        self.c_state[self.nclears] = s
+        self._add_prims(KIND_CLEAR, np.array([self.nclears]), np.array([rs.scissor[2]]),
+                        np.array([rs.scissor[3]]))
+        self.nclears += 1
+        self._maybe_flush()
+
+    # -- flush ----------------------------------------------------------------------
+    def flush(self) -> None:
+        """Render everything queued, in order, and empty the batch."""
+        if self.nprims == 0:
+            return
+        fb = self.fb
+        states = (np.stack(self._state_rows) if self._state_rows
+                  else np.zeros((1, ROW_SIZE), np.int64))
+        if fb.back is None:
+            # Single-buffered: frontbuffer/backbuffer select nothing; everything drawn
+            # goes to the one colour buffer (and a dummy back plane is never indexed).
+            states = states.copy()
+            states[:, ROW["draw_front"]] |= states[:, ROW["draw_back"]]
+            states[:, ROW["draw_back"]] = 0
+        derived, tables = derive_states(states, fb.config.stencil, True, fb.z is not None)
+        front, back, z, st = fb.kernel_planes()
+        render_batch(
+            self.p_kind, self.p_ref, self.p_y0, self.p_y1, self.nprims,
+            self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state,
+            self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
+            self.c_vals, self.c_state,
+            states, derived, tables,
+            front, back, z, st,
+            BAND_ROWS, self.edge_mode, self.general_only, numba.get_num_threads(),
+        )
+        self.flushes += 1
+        self._reset()

@@ -1,0 +1,166 @@
+"""Geometry stage: object -> clip -> window -> fixed point, then into the batch.
+
+Pure functions over numpy arrays; the only state they see is what the caller passes
+(the composite matrix, viewport, depth range and the raster snapshot).  Colour is
+carried only when the raster state writes colour ("model only what a scene needs").
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from vgxsim.kernels.clip import clip_segments, clip_triangles, outcodes, project_snap
+from vgxsim.kernels.lines import count_line_fragments, line_fragments, point_fragments
+from vgxsim.state.raster import FLAT, RasterState
+
+GUARD_PIXELS = 16384.0  # guard band half-width beyond the viewport centre, pixels
+
+
+class Viewing(NamedTuple):
+    """What maps object coordinates to the window.
+
+    Attributes
+    ----------
+    mvp : ndarray, shape (4, 4), float64
+        Object -> clip matrix (row vectors).
+    viewport : tuple of 4 int
+        Inclusive (l, r, b, t).
+    depth : tuple of 2 float
+        lsetdepth (near, far).
+    """
+
+    mvp: np.ndarray
+    viewport: tuple
+    depth: tuple
+
+
+def _guard(viewport) -> tuple[float, float]:
+    l, r, b, t = viewport
+    hx = max((r - l + 1) / 2.0, 0.5)
+    hy = max((t - b + 1) / 2.0, 0.5)
+    return max(1.0, GUARD_PIXELS / hx), max(1.0, GUARD_PIXELS / hy)
+
+
+def _project(clip_v, view: Viewing, subpixel: bool):
+    l, r, b, t = view.viewport
+    return project_snap(clip_v, l, r, b, t, float(view.depth[0]), float(view.depth[1]),
+                        subpixel)
+
+
+def to_clip(obj: np.ndarray, mvp: np.ndarray) -> np.ndarray:
+    """Object (N, 3 or 4) -> clip (N, 4) float64, as row vectors ``p @ mvp``."""
+    obj = np.asarray(obj, dtype=np.float64)
+    if obj.shape[1] == 3:
+        obj = np.concatenate([obj, np.ones((obj.shape[0], 1))], axis=1)
+    return obj @ mvp
+
+
+def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgba=None,
+                   clip_coords=None) -> int:
+    """Transform, clip, project, snap and queue triangles.
+
+    Parameters
+    ----------
+    batch : vgxsim.batch.CommandBatch
+    rs : RasterState
+    view : Viewing
+    obj : ndarray, shape (N, 3) or (N, 4), float64
+        Object-space vertices (ignored when ``clip_coords`` is given).
+    rgba : ndarray, shape (N, 4), float64 or None
+        Vertex colours in [0, 1]; None when colour is not written.
+    tris : ndarray, shape (T, 3), int64
+    flat_rgba : ndarray, shape (T, 4), float64, optional
+        Per-triangle colour for flat shading (the last vertex's).
+    clip_coords : ndarray, shape (N, 4), optional
+        Already transformed vertices.
+
+    Returns
+    -------
+    int
+        Triangles queued.
+    """
+    clip_v = clip_coords if clip_coords is not None else to_clip(obj, view.mvp)
+    tris = np.ascontiguousarray(tris, dtype=np.int64).reshape(-1, 3)
+    if tris.shape[0] == 0:
+        return 0
+    want = rgba is not None
+    attr = np.ascontiguousarray(rgba, dtype=np.float64) if want else np.zeros((clip_v.shape[0], 0))
+    gx, gy = _guard(view.viewport)
+    out_v, out_attr, out_tris, out_src = clip_triangles(
+        np.ascontiguousarray(clip_v), attr, tris, gx, gy)
+    xf, yf, zw = _project(out_v, view, rs.subpixel)
+    flat = None
+    if want and (rs.shademodel == FLAT):
+        flat = (np.ascontiguousarray(flat_rgba, dtype=np.float64) if flat_rgba is not None
+                else attr[tris[:, 2]])
+    return batch.add_triangles(xf, yf, zw, out_attr if want else None, out_tris, out_src,
+                               flat, rs)
+
+
+def draw_lines(batch, rs: RasterState, view: Viewing, obj, rgba, segs, pattern_start,
+               closed: bool | None = None) -> int:
+    """Transform, clip, rasterize and queue line segments as fragments.
+
+    Parameters
+    ----------
+    obj : ndarray, shape (N, 3) or (N, 4)
+    rgba : ndarray, shape (N, 4) or None
+    segs : ndarray, shape (S, 2), int64
+        Vertex indices; with flat shading each segment takes its second vertex's colour.
+    pattern_start : ndarray, shape (S,), int64
+        Line-style position at each segment's first vertex.
+    closed : bool, optional
+        Defaults to the IRIS rule: closed without subpixel, half-open with it.
+    """
+    clip_v = to_clip(obj, view.mvp)
+    segs = np.ascontiguousarray(segs, dtype=np.int64).reshape(-1, 2)
+    n = clip_v.shape[0]
+    attr = (np.ascontiguousarray(rgba, dtype=np.float64) * 255.0 if rgba is not None
+            else np.zeros((n, 4)))
+    if rs.shademodel == FLAT:
+        attr = attr.copy()
+        flat = attr[segs[:, 1]]
+    gx, gy = _guard(view.viewport)
+    cv, ca, src, _t0 = clip_segments(np.ascontiguousarray(clip_v), attr, segs, gx, gy)
+    if cv.shape[0] == 0:
+        return 0
+    xf, yf, zw = _project(np.ascontiguousarray(cv.reshape(-1, 4)), view, rs.subpixel)
+    seg_xf = xf.reshape(-1, 2)
+    seg_yf = yf.reshape(-1, 2)
+    seg_z = zw.reshape(-1, 2)
+    seg_c = np.ascontiguousarray(ca)
+    if rs.shademodel == FLAT:
+        seg_c = np.repeat(flat[src][:, None, :], 2, axis=1)
+    closed = (not rs.subpixel) if closed is None else closed
+    total = count_line_fragments(seg_xf, seg_yf, closed, rs.linewidth)
+    out_xy = np.empty((total, 2), np.int64)
+    out_z = np.empty(total, np.int64)
+    out_c = np.empty(total, np.int64)
+    starts = np.ascontiguousarray(np.asarray(pattern_start, np.int64)[src])
+    nf = line_fragments(seg_xf, seg_yf, seg_z, seg_c, starts, closed, rs.linewidth,
+                        rs.linestyle, max(1, rs.lsrepeat), out_xy, out_z, out_c, 0)
+    batch.add_fragments(out_xy[:nf], out_z[:nf], out_c[:nf], rs)
+    return nf
+
+
+def draw_points(batch, rs: RasterState, view: Viewing, obj, rgba) -> int:
+    """Transform, cull outside the view volume, and queue points as fragments."""
+    clip_v = np.ascontiguousarray(to_clip(obj, view.mvp))
+    gx, gy = _guard(view.viewport)
+    keep = outcodes(clip_v, gx, gy) == 0
+    if not keep.any():
+        return 0
+    clip_v = np.ascontiguousarray(clip_v[keep])
+    c = (np.asarray(rgba, np.float64)[keep] * 255.0 if rgba is not None
+         else np.zeros((clip_v.shape[0], 4)))
+    xf, yf, zw = _project(clip_v, view, rs.subpixel)
+    size = max(1, rs.pntsize)
+    total = clip_v.shape[0] * size * size
+    out_xy = np.empty((total, 2), np.int64)
+    out_z = np.empty(total, np.int64)
+    out_c = np.empty(total, np.int64)
+    nf = point_fragments(xf, yf, zw, np.ascontiguousarray(c), size, out_xy, out_z, out_c, 0)
+    batch.add_fragments(out_xy[:nf], out_z[:nf], out_c[:nf], rs)
+    return nf

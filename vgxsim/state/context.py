@@ -1,0 +1,308 @@
+"""The emulated VGX: one window's configuration, registers, matrices and batch.
+
+The IRIS GL layer (:mod:`vgxsim.gl`) validates arguments and then stores into the
+registers held here; drawing goes geometry -> batch -> kernels -> planes.  Library
+users may also drive a :class:`Context` directly (``draw_arrays``, ``read_rgba``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, CommandBatch
+from vgxsim.geometry import assembly
+from vgxsim.geometry.pipeline import Viewing, draw_lines, draw_points, draw_triangles
+from vgxsim.kernels.accum import accumulate
+from vgxsim.lighting import LightingTables, light_to_eye, shade
+from vgxsim.state.matrices import MatrixState
+from vgxsim.state.planes import ZMAX, ZMIN, Framebuffer, PlaneConfig, unpack_rgba
+from vgxsim.state.raster import needs_colour
+from vgxsim.state.registers import RasterRegisters
+
+POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
+    "polygon", "tmesh", "qstrip", "line", "closedline", "point")
+
+
+class Context:
+    """One IRIS GL window and its graphics state.
+
+    Parameters
+    ----------
+    width, height : int
+        Window size in pixels.
+    rgb, double : bool
+        RGBmode/cmode and doublebuffer/singlebuffer, as if configured by gconfig().
+    stencil, zbits, acbits : int
+        stensize, zbsize and acsize.
+    """
+
+    def __init__(self, width: int = 640, height: int = 512, *, rgb: bool = True,
+                 double: bool = False, stencil: int = 0, zbits: int = 24, acbits: int = 0):
+        self.pending = PlaneConfig(width, height, double=double, zbits=zbits,
+                                   stencil=stencil, acbits=acbits, rgb=rgb)
+        self.matrices = MatrixState()
+        self.colour = (1.0, 1.0, 1.0, 1.0)  # current RGBA (floats 0..1)
+        self.colour_index = 0
+        self.normal = (0.0, 0.0, 1.0)
+        self.texcoord = (0.0, 0.0)
+        self.last_sent = "colour"  # lmcolor(3G): colour or normal sent last decides
+        self.lighting = LightingTables()
+        self.bound = {"material": 0, "backmaterial": 0, "lmodel": 0, "lights": {}}
+        self.lmcolor_mode = 0
+        self.depth_range = (ZMIN, ZMAX)
+        self.sink = None
+        self.frames = 0
+        self.readsource = 0  # SRC_AUTO
+        self.prim: str | None = None
+        self.prim_verts: list = []
+        self.prim_swaps: list[int] = []
+        self.concave = False
+        self.linestyle_pos = 0
+        self.configure(self.pending)
+
+    # -- configuration ----------------------------------------------------------------
+    def configure(self, config: PlaneConfig) -> None:
+        """gconfig(): allocate the planes the pending modes ask for.
+
+        Queued drawing is flushed to the old planes first; the new planes start
+        cleared (colour 0, z = GD_ZMAX, stencil 0) and registers that gconfig resets
+        (swritemask, the draw buffers) are reset.
+        """
+        if getattr(self, "batch", None) is not None:
+            self.batch.flush()
+        self.config = config
+        self.fb = Framebuffer(config)
+        self.batch = CommandBatch(self.fb)
+        old = getattr(self, "raster", None)
+        self.raster = RasterRegisters(config.width, config.height, config.double)
+        if old is not None:
+            keep = {k: getattr(old, k) for k in (
+                "zbuffer", "zfunc", "zwritemask", "stencil", "blend", "logicop", "wmpack",
+                "afunction", "shademodel", "subpixel", "backface", "frontface", "linewidth",
+                "linestyle", "lsrepeat", "pntsize")}
+            self.raster.set(**keep)
+        self.raster.set(swritemask=(1 << config.stencil) - 1 if config.stencil else 0)
+
+    @property
+    def width(self) -> int:
+        return self.config.width
+
+    @property
+    def height(self) -> int:
+        return self.config.height
+
+    def viewing(self) -> Viewing:
+        return Viewing(self.matrices.mvp(), self.raster.viewport, self.depth_range)
+
+    # -- lighting -------------------------------------------------------------------
+    def lighting_active(self) -> bool:
+        """Lighting is on iff a material and a lighting model are bound (lmbind(3G))."""
+        return self.bound["material"] != 0 and self.bound["lmodel"] != 0
+
+    def bind_light(self, slot: int, index: int) -> None:
+        """lmbind(LIGHTn, index): position transformed by the current modelview."""
+        if index == 0:
+            self.bound["lights"].pop(slot, None)
+            return
+        light = self.lighting.light(index)
+        self.bound["lights"][slot] = (index, light_to_eye(light, self.matrices.modelview_matrix()))
+
+    def shade_vertices(self, obj, normals, colours, lit) -> np.ndarray:
+        """Per-vertex colour: lit vertices through the IRIS lighting equation.
+
+        Parameters
+        ----------
+        obj : ndarray, shape (N, 4); normals : ndarray, shape (N, 3)
+        colours : ndarray, shape (N, 4); lit : ndarray, shape (N,), bool
+
+        Returns
+        -------
+        ndarray, shape (N, 4), float64
+        """
+        out = np.array(colours, dtype=np.float64)
+        if not self.lighting_active() or not lit.any():
+            return out
+        mv = self.matrices.modelview_matrix()
+        eye = (obj[lit] @ mv)
+        pos = eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4])
+        nrm = normals[lit] @ self.matrices.normal_matrix()
+        mat = self.lighting.material(self.bound["material"])
+        lm = self.lighting.lmodel(self.bound["lmodel"])
+        lights = [entry for _slot, (_i, entry) in sorted(self.bound["lights"].items())]
+        override = None
+        if self.lmcolor_mode not in (0, 6):
+            override = (self.lmcolor_mode, np.asarray(colours, np.float64)[lit])
+        out[lit] = shade(pos, nrm, mat, lights, lm, color_override=override)
+        return out
+
+    # -- drawing ---------------------------------------------------------------------
+    def draw_arrays(self, kind: str, obj, colours=None, normals=None, lit=None,
+                    swaps=(), indices=None) -> None:
+        """Draw one primitive (or a mesh, with ``indices``) from arrays.
+
+        Parameters
+        ----------
+        kind : {'polygon', 'tmesh', 'qstrip', 'line', 'closedline', 'point', 'triangles'}
+        obj : ndarray, shape (N, 3) or (N, 4)
+            Object-space vertices.
+        colours : ndarray, shape (N, 4), optional
+            Vertex colours (default: the current colour).
+        normals : ndarray, shape (N, 3), optional
+        lit : ndarray, shape (N,), bool, optional
+            Which vertices are lit (default: all when lighting is active and normals
+            were given).
+        swaps : sequence of int
+            tmesh only: vertex counts at which swaptmesh() was called.
+        indices : ndarray, shape (T, 3), optional
+            'triangles' only: a triangle list.
+        """
+        obj = np.asarray(obj, dtype=np.float64)
+        if obj.ndim != 2 or obj.shape[0] == 0:
+            return
+        if obj.shape[1] == 3:
+            obj = np.concatenate([obj, np.ones((obj.shape[0], 1))], axis=1)
+        elif obj.shape[1] == 2:
+            obj = np.concatenate([obj, np.zeros((obj.shape[0], 1)),
+                                  np.ones((obj.shape[0], 1))], axis=1)
+        n = obj.shape[0]
+        rs = self.raster.snapshot()
+        rgba = None
+        if needs_colour(rs):
+            cols = (np.broadcast_to(np.asarray(self.colour, np.float64), (n, 4))
+                    if colours is None else np.asarray(colours, np.float64))
+            if normals is not None and self.lighting_active():
+                litm = np.ones(n, bool) if lit is None else np.asarray(lit, bool)
+                rgba = self.shade_vertices(obj, np.asarray(normals, np.float64), cols, litm)
+            else:
+                rgba = np.array(cols, dtype=np.float64)
+        view = self.viewing()
+        if kind in (LINE, CLOSEDLINE):
+            segs = assembly.line_segments(n, kind == CLOSEDLINE)
+            starts = self._pattern_starts(obj, segs, view)
+            draw_lines(self.batch, rs, view, obj, rgba, segs, starts)
+            return
+        if kind == POINT:
+            draw_points(self.batch, rs, view, obj, rgba)
+            return
+        if kind == POLYGON:
+            tris = (self._concave_triangles(obj, view) if self.concave
+                    else assembly.polygon_fan(n))
+            flat = None if rgba is None else np.repeat(rgba[-1:], len(tris), axis=0)
+        elif kind == TMESH:
+            tris = assembly.tmesh_triangles(n, list(swaps))
+            flat = None if rgba is None else rgba[tris[:, 2]]
+        elif kind == QSTRIP:
+            tris = assembly.qstrip_triangles(n)
+            flat = None if rgba is None else rgba[tris[:, 1]]
+        elif kind == "triangles":
+            tris = np.asarray(indices, np.int64).reshape(-1, 3)
+            flat = None if rgba is None else rgba[tris[:, 2]]
+        else:
+            raise ValueError(f"unknown primitive kind {kind!r}")
+        draw_triangles(self.batch, rs, view, obj, rgba, tris, flat)
+
+    def _pattern_starts(self, obj, segs, view) -> np.ndarray:
+        """Line-style position of each segment: continues along a polyline."""
+        if segs.shape[0] == 0:
+            return np.zeros(0, np.int64)
+        clip = obj @ view.mvp
+        w = np.where(clip[:, 3] == 0, 1e-30, clip[:, 3])
+        l, r, b, t = view.viewport
+        x = (clip[:, 0] / w + 1) * (r - l + 1) / 2
+        y = (clip[:, 1] / w + 1) * (t - b + 1) / 2
+        steps = np.maximum(np.abs(np.round(x[segs[:, 1]]) - np.round(x[segs[:, 0]])),
+                           np.abs(np.round(y[segs[:, 1]]) - np.round(y[segs[:, 0]])))
+        steps = np.nan_to_num(steps, nan=0.0, posinf=0.0, neginf=0.0).astype(np.int64)
+        return np.concatenate([[0], np.cumsum(steps)[:-1]]).astype(np.int64)
+
+    def _concave_triangles(self, obj, view) -> np.ndarray:
+        clip = obj @ view.mvp
+        w = np.where(np.abs(clip[:, 3]) < 1e-300, 1e-300, clip[:, 3])
+        xy = np.stack([clip[:, 0] / w, clip[:, 1] / w], axis=1)
+        return assembly.triangulate_concave(xy)
+
+    # -- clears, readback, frames ------------------------------------------------------
+    def clear_planes(self, planes: int, colour: int = 0, z: int = ZMAX, stencil: int = 0) -> None:
+        """Queue a clear of the raster rectangle (CLEAR_* plane bits)."""
+        self.batch.add_clear(planes, colour, z, stencil, self.raster.clear_state())
+
+    def flush(self) -> None:
+        """Render everything queued."""
+        self.batch.flush()
+
+    def colour_buffer(self, which: str = "auto") -> np.ndarray:
+        """The packed (H, W) uint32 buffer readsource selects, after a flush."""
+        self.flush()
+        if which == "auto":
+            which = "back" if self.fb.back is not None else "front"
+        if which == "back" and self.fb.back is not None:
+            return self.fb.back
+        return self.fb.front
+
+    def read_rgba(self, which: str = "front") -> np.ndarray:
+        """(H, W, 4) uint8 RGBA copy of a colour buffer, row 0 = bottom."""
+        return unpack_rgba(self.colour_buffer(which))
+
+    def swap(self) -> None:
+        """swapbuffers(): flush, exchange buffers and hand the new front to the sink."""
+        self.flush()
+        self.fb.swap()
+        self.emit_frame()
+
+    def emit_frame(self) -> None:
+        if self.sink is not None:
+            self.sink.write(self.display_rgba())
+        self.frames += 1
+
+    def display_rgba(self) -> np.ndarray:
+        """What the monitor shows: the front buffer as RGBA (colour-mapped in cmode)."""
+        self.flush()
+        if self.config.rgb:
+            return unpack_rgba(self.fb.front)
+        return self.colormap_lookup(self.fb.front)
+
+    def colormap_lookup(self, packed: np.ndarray) -> np.ndarray:
+        cmap = getattr(self, "colormap", None)
+        if cmap is None:
+            from vgxsim.state.colormap import default_colormap
+            cmap = self.colormap = default_colormap()
+        idx = (packed & 0xFFF).astype(np.int64) % cmap.shape[0]
+        rgb = cmap[idx]
+        return np.concatenate([rgb, np.full(packed.shape + (1,), 255, np.uint8)], axis=2)
+
+    # -- accumulation ----------------------------------------------------------------
+    def acbuf(self, op: int, value: float) -> None:
+        """acbuf(op, value) over the raster rectangle (docs/numeric_model.md s. 9)."""
+        if self.fb.accum is None:
+            return
+        self.flush()
+        x0, x1, y0, y1 = self.raster.raster_rect()
+        if x0 > x1 or y0 > y1:
+            return
+        rs = self.raster.snapshot()
+        if op == 3:  # AC_RETURN writes the draw buffer(s)
+            targets = []
+            if self.fb.back is not None and rs.draw_back:
+                targets.append(self.fb.back)
+            if rs.draw_front or self.fb.back is None:
+                targets.append(self.fb.front)
+            for buf in targets:
+                accumulate(self.fb.accum, buf, op, float(value), x0, x1, y0, y1,
+                           rs.wmpack & 0xFFFFFFFF)
+        else:
+            src = self.colour_buffer(self._readsource_name())
+            accumulate(self.fb.accum, src, op, float(value), x0, x1, y0, y1, 0xFFFFFFFF)
+
+    def _readsource_name(self) -> str:
+        return {1: "front", 2: "back"}.get(self.readsource, "auto")
+
+
+def replace_config(ctx: Context, **changes) -> PlaneConfig:
+    """The pending configuration with some fields changed (for the gl layer)."""
+    ctx.pending = replace(ctx.pending, **changes)
+    return ctx.pending
+
+
+__all__ = ["Context", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL", "replace_config"]

@@ -1,0 +1,121 @@
+"""Matrix modes and stacks (mmode(3G)), with the composite derived once per change.
+
+MSINGLE (the IRIS default) keeps one stack whose top is the whole transform;
+MVIEWING keeps a modelview stack and a separate projection; MPROJECTION and
+MTEXTURE select those matrices.  Projection calls (perspective, window, ortho,
+ortho2) *load* -- they do not multiply -- and in MVIEWING they replace the
+projection matrix (MS "Porting Matrix and Transformation Functions"; IGL).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+MSINGLE, MPROJECTION, MVIEWING, MTEXTURE = 0, 1, 2, 3
+STACK_DEPTH = 32  # MATRIXSTACKDEPTH (gl.h)
+
+
+class MatrixStackError(RuntimeError):
+    """Push beyond MATRIXSTACKDEPTH or pop of the last matrix."""
+
+
+class MatrixState:
+    """Stacks of 4x4 float64 row-vector matrices."""
+
+    def __init__(self):
+        self.mode = MSINGLE
+        self.modelview = [np.eye(4)]  # MSINGLE and MVIEWING share this stack
+        self.projection = np.eye(4)
+        self.texture = np.eye(4)
+        self._mvp = None
+        self._mv_inv_t = None
+
+    def _touch(self) -> None:
+        self._mvp = None
+        self._mv_inv_t = None
+
+    # current matrix of the active mode
+    def current(self) -> np.ndarray:
+        if self.mode == MPROJECTION:
+            return self.projection
+        if self.mode == MTEXTURE:
+            return self.texture
+        return self.modelview[-1]
+
+    def load(self, m: np.ndarray) -> None:
+        m = np.array(m, dtype=np.float64).reshape(4, 4)
+        if self.mode == MPROJECTION:
+            self.projection = m
+        elif self.mode == MTEXTURE:
+            self.texture = m
+        else:
+            self.modelview[-1] = m
+        self._touch()
+
+    def mult(self, m: np.ndarray) -> None:
+        """multmatrix: current := m @ current (IRIS premultiplies)."""
+        self.load(np.asarray(m, dtype=np.float64).reshape(4, 4) @ self.current())
+
+    def load_projection(self, m: np.ndarray) -> None:
+        """perspective/window/ortho/ortho2: in MSINGLE they load the single matrix,
+        otherwise the projection matrix."""
+        if self.mode == MSINGLE:
+            self.modelview[-1] = np.array(m, dtype=np.float64)
+        else:
+            self.projection = np.array(m, dtype=np.float64)
+        self._touch()
+
+    def push(self) -> None:
+        if self.mode in (MPROJECTION, MTEXTURE):
+            return  # only the modelview stack is a stack (mmode(3G))
+        if len(self.modelview) >= STACK_DEPTH:
+            raise MatrixStackError("matrix stack overflow (MATRIXSTACKDEPTH 32)")
+        self.modelview.append(self.modelview[-1].copy())
+        self._touch()
+
+    def pop(self) -> None:
+        if self.mode in (MPROJECTION, MTEXTURE):
+            return
+        if len(self.modelview) <= 1:
+            raise MatrixStackError("matrix stack underflow")
+        self.modelview.pop()
+        self._touch()
+
+    def set_mode(self, mode: int) -> None:
+        if mode == MSINGLE and self.mode != MSINGLE:
+            self.projection = np.eye(4)
+        elif mode != MSINGLE and self.mode == MSINGLE and mode != MTEXTURE:
+            # Entering MVIEWING from MSINGLE: the single matrix becomes the projection
+            # (IGL does the same), the modelview starts as identity.
+            self.projection = self.modelview[-1].copy()
+            self.modelview = [np.eye(4)]
+        self.mode = mode
+        self._touch()
+
+    def modelview_matrix(self) -> np.ndarray:
+        if self.mode == MSINGLE:
+            return np.eye(4)
+        return self.modelview[-1]
+
+    def mvp(self) -> np.ndarray:
+        """Object -> clip transform (derived once per change)."""
+        if self._mvp is None:
+            if self.mode == MSINGLE:
+                self._mvp = self.modelview[-1].copy()
+            else:
+                self._mvp = self.modelview[-1] @ self.projection
+        return self._mvp
+
+    def normal_matrix(self) -> np.ndarray:
+        """Inverse transpose of the modelview's upper 3x3 (row-vector form)."""
+        if self._mv_inv_t is None:
+            m = self.modelview_matrix()[:3, :3]
+            try:
+                self._mv_inv_t = np.linalg.inv(m).T
+            except np.linalg.LinAlgError:
+                self._mv_inv_t = np.eye(3)
+        return self._mv_inv_t
+
+    def get(self) -> np.ndarray:
+        """getmatrix(): in MSINGLE the single matrix, else the current mode's."""
+        return self.current().copy()

@@ -1,0 +1,85 @@
+"""Fragment-stage registers: setters only store and mark dirty.
+
+The snapshot handed to the batch (:class:`~vgxsim.state.raster.RasterState`) is
+rebuilt at most once per change, when the next primitive is queued -- not on every
+setter call -- following Mesa's softpipe pattern of one ``update_derived``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from .raster import CULL_BACK, CULL_FRONT, RasterState
+
+
+class RasterRegisters:
+    """The IRIS GL registers that decide what happens to a fragment."""
+
+    def __init__(self, width: int, height: int, double: bool):
+        self.width = width
+        self.height = height
+        self.double = double
+        self.zbuffer = False
+        self.zfunc = 3  # ZF_LEQUAL, the default (zfunction(3G))
+        self.zwritemask = 0xFFFFFFFF
+        self.stencil = (False, 0, 7, 0xFF, 0, 0, 0)
+        self.swritemask = 0xFF
+        self.blend = (1, 0)  # BF_ONE, BF_ZERO
+        self.logicop = 3  # LO_SRC
+        self.wmpack = 0xFFFFFFFF
+        self.afunction = (0, 7)  # (ref, AF_ALWAYS)
+        self.shademodel = 1  # GOURAUD
+        self.subpixel = False
+        self.backface = False
+        self.frontface = False
+        self.frontbuffer = not double
+        self.backbuffer = double
+        self.viewport = (0, width - 1, 0, height - 1)
+        self.scrmask = (0, width - 1, 0, height - 1)
+        self.linewidth = 1
+        self.linestyle = 0xFFFF
+        self.lsrepeat = 1
+        self.pntsize = 1
+        self._snapshot: RasterState | None = None
+
+    def set(self, **values) -> None:
+        """Store register values and mark the snapshot dirty."""
+        for k, v in values.items():
+            if not hasattr(self, k):
+                raise AttributeError(k)
+            setattr(self, k, v)
+        self._snapshot = None
+
+    def raster_rect(self) -> tuple[int, int, int, int]:
+        """Viewport and screenmask and the window, intersected (inclusive)."""
+        vl, vr, vb, vt = self.viewport
+        sl, sr, sb, st = self.scrmask
+        return (max(vl, sl, 0), min(vr, sr, self.width - 1),
+                max(vb, sb, 0), min(vt, st, self.height - 1))
+
+    def snapshot(self) -> RasterState:
+        """The current RasterState (cached until a register changes)."""
+        if self._snapshot is None:
+            en, ref, func, mask, fail, pas, zpass = self.stencil
+            cull = (CULL_BACK if self.backface else 0) | (CULL_FRONT if self.frontface else 0)
+            if self.double:
+                front, back = self.frontbuffer, self.backbuffer
+            else:
+                front, back = True, False
+            self._snapshot = RasterState(
+                zbuffer=self.zbuffer, zfunc=self.zfunc, zwritemask=self.zwritemask & 0xFFFFFFFF,
+                stencil=en, sref=ref, sfunc=func, smask=mask, sfail=fail, spass=pas,
+                szpass=zpass, swritemask=self.swritemask,
+                blend_sf=self.blend[0], blend_df=self.blend[1], logicop=self.logicop,
+                wmpack=self.wmpack & 0xFFFFFFFF, afunc=self.afunction[1],
+                aref=self.afunction[0], shademodel=self.shademodel, subpixel=self.subpixel,
+                cull=cull, draw_front=front, draw_back=back, scissor=self.raster_rect(),
+                linewidth=self.linewidth, linestyle=self.linestyle, lsrepeat=self.lsrepeat,
+                pntsize=self.pntsize,
+            )
+        return self._snapshot
+
+    def clear_state(self) -> RasterState:
+        """Snapshot for clears: only the rectangle, masks and draw buffers matter."""
+        return replace(self.snapshot(), zbuffer=False, stencil=False, blend_sf=1,
+                       blend_df=0, logicop=3, afunc=7, cull=0)
