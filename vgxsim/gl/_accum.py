@@ -1,0 +1,3 @@
+"""IRIS GL calls: accum."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: color."""
+
+__all__: list[str] = []

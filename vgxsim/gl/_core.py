@@ -1,0 +1,168 @@
+"""Shared machinery of the IRIS GL layer: the current window, errors, arguments.
+
+Every gl function validates its arguments here and raises a :class:`GLError`
+subclass whose message names the call and its arguments, e.g.
+``stensize(9): planes must be 0..8 (getgdesc(GD_BITS_STENCIL) is 8)``.  Nothing below
+this layer ever sees a bad value.
+
+Argument conventions follow CPython's historical IRIX ``gl`` module
+(shared/reference/cpython_gl_module.md): short/long/Angle/Boolean arguments must be
+Python ints (a float Angle is an error, as the binding's ``PyInt_Check`` made it),
+Coord/float arguments take ints or floats, fixed-size arrays may be passed either as
+one flat sequence or as separate arguments (``v3f((x, y, z))`` and ``v3f(x, y, z)``).
+"""
+
+from __future__ import annotations
+
+import numbers
+from collections.abc import Sequence
+
+import numpy as np
+
+
+class GLError(Exception):
+    """Base class of every error the IRIS GL layer raises."""
+
+
+class GLUsageError(GLError):
+    """A call made in the wrong state (no window, vertex outside bgn/end, ...)."""
+
+
+class GLValueError(GLError, ValueError):
+    """A value out of range or an unknown token."""
+
+
+class GLTypeError(GLError, TypeError):
+    """An argument of the wrong Python type (e.g. a float Angle)."""
+
+
+def describe(name: str, args: tuple) -> str:
+    """``name(arg, ...)`` with token names where the argument is a token."""
+    parts = []
+    for a in args:
+        if isinstance(a, (list, tuple)) and len(a) > 6:
+            parts.append(f"[{len(a)} values]")
+        elif isinstance(a, np.ndarray):
+            parts.append(f"<array {a.shape}>")
+        else:
+            parts.append(repr(a))
+    return f"{name}({', '.join(parts)})"
+
+
+class _Session:
+    """Process-wide IRIS GL state: windows, the current one, window preferences."""
+
+    def __init__(self):
+        self.reset()
+
+    def reset(self) -> None:
+        self.windows: dict[int, object] = {}
+        self.current: int | None = None
+        self.next_gid = 1
+        self.prefsize: tuple[int, int] | None = None
+        self.prefposition: tuple[int, int, int, int] | None = None
+        self.default_size = (640, 512)  # winopen without prefsize (vgxsim run --size)
+        self.queue = None  # vgxsim.events.EventQueue, created lazily
+        self.sink_factory = None  # callable(gid) -> sink, set by `vgxsim run`
+        self.objects: dict[int, list] = {}  # display objects, by name
+        self.open_object: int | None = None  # makeobj in progress
+        self.recording = None  # the list calls are recorded into, or None
+
+
+session = _Session()
+
+
+def current(name: str, args: tuple = ()):
+    """The current window's Context; GLUsageError before winopen."""
+    if session.current is None:
+        raise GLUsageError(f"{describe(name, args)}: no window is open (call winopen first)")
+    return session.windows[session.current]
+
+
+def as_int(name: str, args: tuple, what: str, v) -> int:
+    """An integer argument (short, long, Angle, Boolean, Device, token)."""
+    if isinstance(v, (bool, np.bool_)):
+        return int(v)
+    if isinstance(v, (numbers.Integral, np.integer)):
+        return int(v)
+    raise GLTypeError(f"{describe(name, args)}: {what} must be an int, not "
+                      f"{type(v).__name__} (IRIS GL takes an integer here)")
+
+
+def as_angle(name: str, args: tuple, v) -> int:
+    """An Angle: an int in tenths of a degree (a float is an error, as in IRIS GL)."""
+    if isinstance(v, (numbers.Integral, np.integer)) and not isinstance(v, bool):
+        return int(v)
+    raise GLTypeError(f"{describe(name, args)}: Angle must be an int in tenths of a "
+                      f"degree, not {type(v).__name__} {v!r} (use rot() for float degrees)")
+
+
+def as_float(name: str, args: tuple, what: str, v) -> float:
+    if isinstance(v, (numbers.Real, np.floating, np.integer)) and not isinstance(v, bool):
+        return float(v)
+    if isinstance(v, bool):
+        return float(v)
+    raise GLTypeError(f"{describe(name, args)}: {what} must be a number, not "
+                      f"{type(v).__name__}")
+
+
+def as_axis(name: str, args: tuple, v) -> str:
+    if isinstance(v, str) and len(v) == 1 and v.lower() in "xyz":
+        return v.lower()
+    raise GLValueError(f"{describe(name, args)}: axis must be 'x', 'y' or 'z'")
+
+
+def flat_numbers(name: str, args: tuple, n: int | None, integer: bool = False) -> list:
+    """Fixed-size array arguments: ``f(x, y, z)`` or ``f((x, y, z))``.
+
+    ``n`` is the required count (None: any count).  Integer arrays reject floats
+    (the historical binding read them with PyInt_Check).
+    """
+    seq = args
+    if len(args) == 1 and isinstance(args[0], (Sequence, np.ndarray)) and not isinstance(
+            args[0], str):
+        seq = tuple(np.asarray(args[0]).reshape(-1).tolist()) if isinstance(
+            args[0], np.ndarray) else tuple(args[0])
+    if n is not None and len(seq) != n:
+        raise GLTypeError(f"{describe(name, args)}: expected {n} numbers, got {len(seq)}")
+    out = []
+    for i, v in enumerate(seq):
+        if integer:
+            out.append(as_int(name, args, f"element {i}", v))
+        else:
+            out.append(as_float(name, args, f"element {i}", v))
+    return out
+
+
+def check_token(name: str, args: tuple, what: str, v, allowed, family: str = "") -> int:
+    """An int token that must be one of ``allowed``."""
+    iv = as_int(name, args, what, v)
+    if iv not in allowed:
+        fam = f" ({family}*)" if family else ""
+        raise GLValueError(f"{describe(name, args)}: {what} {iv} is not a valid token{fam}")
+    return iv
+
+
+def gl_function(record: bool = True):
+    """Decorate an IRIS GL call.
+
+    With ``record=True`` the call is stored in the open display object while
+    ``makeobj`` is in effect (IRIS GL compiles drawing and state commands into the
+    object instead of executing them); queries and window calls use ``record=False``.
+    """
+
+    def wrap(func):
+        def call(*args):
+            if record and session.recording is not None:
+                session.recording.append((call, args))
+                return None
+            return func(*args)
+
+        call.__name__ = func.__name__
+        call.__qualname__ = func.__qualname__
+        call.__doc__ = func.__doc__
+        call.__wrapped__ = func
+        call.gl_record = record
+        return call
+
+    return wrap

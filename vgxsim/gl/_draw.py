@@ -1,0 +1,3 @@
+"""IRIS GL calls: draw."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: events."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: lighting."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: matrix."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: objects."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: oldstyle."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: query."""
+
+__all__: list[str] = []

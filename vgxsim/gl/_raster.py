@@ -1,0 +1,3 @@
+"""IRIS GL calls: raster."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: readback."""
+
+__all__: list[str] = []

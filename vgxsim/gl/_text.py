@@ -1,0 +1,3 @@
+"""IRIS GL calls: text."""
+
+__all__: list[str] = []

@@ -1,0 +1,3 @@
+"""IRIS GL calls: window."""
+
+__all__: list[str] = []
