@@ -29,10 +29,20 @@ S_SX0, S_SX1, S_SY0, S_SY1 = 26, 27, 28, 29
 # Derived per-state columns computed by derive_states().
 D_MODE, D_COLOUR, D_ZTEST, D_ZWRITE, D_STENCIL, D_BLEND, D_ZMASK = 0, 1, 2, 3, 4, 5, 6
 D_SWM, D_RGBA = 7, 8  # stencil write mask limited to the planes; colour needed at all
-D_SIZE = 9
+D_DZPASS, D_DZFAIL, D_SMAX = 9, 10, 11  # arithmetic stencil form (MODE_ZSTENCIL_ADD)
+D_CBLEND = 12  # MODE_COLOUR blend kind: 0 replace, 1 add (ONE, ONE), 2 general
+D_SIZE = 13
 MODE_GENERAL = 0
 MODE_ZSTENCIL = 1  # shadow-volume pass: z test, stencil update, no colour, no z write
 MODE_ZONLY = 2  # depth-only pass: z test and full z write, no colour, no stencil
+# Shadow-volume pass whose stencil ops are KEEP/INCR/DECR with an always-passing
+# stencil test and a full write mask (Heidmann's case): the new value is
+# clamp(s + delta, 0, smax), branch-free and vectorizable, instead of a table look-up.
+MODE_ZSTENCIL_ADD = 3
+# Colour pass with no stencil writes (stencil off, or a test whose ops change
+# nothing), alpha test off, no logicop, one draw buffer: the lit pass of Heidmann's
+# algorithm (stencil EQUAL, blend ONE+ONE) and ordinary shaded drawing.
+MODE_COLOUR = 4
 
 LO_SRC = 3
 Z24_MASK = 0xFFFFFF
@@ -59,6 +69,15 @@ def _stencil_op(op, s, ref, smax):
     if op == 5:
         return (~s) & smax
     return s
+
+
+@inline
+def _op_delta(op):
+    if op == 3:
+        return 1
+    if op == 4:
+        return -1
+    return 0
 
 
 @jit
@@ -103,12 +122,27 @@ def derive_states(states, stencil_planes, has_colour, has_z):
         # Colour is interpolated only when written or when the alpha test reads it.
         derived[i, D_RGBA] = colour or st[S_AFUNC] != 7
         alpha_always = st[S_AFUNC] == 7
+        derived[i, D_SMAX] = smax
+        add_ok = (sten and st[S_SFUNC] == 7 and (st[S_SWRITEMASK] & smax) == smax
+                  and st[S_SZPASS] in (0, 3, 4) and st[S_SPASS] in (0, 3, 4))
         if (not colour) and ztest and sten and (not zwrite) and alpha_always:
-            derived[i, D_MODE] = MODE_ZSTENCIL
+            derived[i, D_MODE] = MODE_ZSTENCIL_ADD if add_ok else MODE_ZSTENCIL
+            derived[i, D_DZPASS] = _op_delta(st[S_SZPASS])
+            derived[i, D_DZFAIL] = _op_delta(st[S_SPASS])
         elif (not colour) and ztest and (not sten) and zmask == Z24_MASK and alpha_always:
             derived[i, D_MODE] = MODE_ZONLY
         else:
             derived[i, D_MODE] = MODE_GENERAL
+        if derived[i, D_MODE] == MODE_GENERAL and colour and alpha_always and (
+                st[S_LOGICOP] == LO_SRC) and (st[S_DRAW_FRONT] != 0) != (st[S_DRAW_BACK] != 0) and (
+                (not ztest) or (not zwrite) or zmask == Z24_MASK):
+            derived[i, D_MODE] = MODE_COLOUR
+            if st[S_BLEND_SF] == 1 and st[S_BLEND_DF] == 0:
+                derived[i, D_CBLEND] = 0
+            elif st[S_BLEND_SF] == 1 and st[S_BLEND_DF] == 1:
+                derived[i, D_CBLEND] = 1
+            else:
+                derived[i, D_CBLEND] = 2
         ref = st[S_SREF]
         mask = st[S_SMASK]
         wm = st[S_SWRITEMASK] & smax
@@ -128,6 +162,11 @@ def derive_states(states, stencil_planes, has_colour, has_z):
             tables[i, 0, s] = (s & ~wm) | (r0 & wm)
             tables[i, 1, s] = (s & ~wm) | (r1 & wm)
             tables[i, 2, s] = 1 if passed else 0
+        if derived[i, D_MODE] == MODE_COLOUR and sten:
+            for s in range(smax + 1):
+                if tables[i, 0, s] != s or tables[i, 1, s] != s:
+                    derived[i, D_MODE] = MODE_GENERAL
+                    break
     return derived, tables
 
 
@@ -196,6 +235,16 @@ def combine(src, dst, sf, df, logicop, wm):
 
 
 @inline
+def add_sat(src, dst):
+    """Per-byte saturating add of two packed words (blendfunction(BF_ONE, BF_ONE))."""
+    out = 0
+    for sh in range(0, 32, 8):
+        v = ((src >> sh) & 0xFF) + ((dst >> sh) & 0xFF)
+        out |= min(v, 255) << sh
+    return out
+
+
+@inline
 def round_z(z, zmin, zmax):
     zi = np.int64(np.floor(z + 0.5))
     if zi < zmin:
@@ -228,8 +277,12 @@ def write_z(old, zi, zmask):
 def fragment(x, y, zi, rgba, st, dv, tab, front, back, zbuf, sten):
     """The general per-fragment path (one pixel, any state).
 
-    Returns True when the fragment passed every test.
+    Returns True when the fragment passed every test.  Indices are made unsigned:
+    coordinates are inside the raster rectangle, and Numba then skips its
+    negative-index wraparound code.
     """
+    x = np.uintp(x)
+    y = np.uintp(y)
     if st[S_AFUNC] != 7:
         if not cmp_pass(st[S_AFUNC], (rgba >> 24) & 0xFF, st[S_AREF]):
             return False

@@ -16,13 +16,25 @@ import numba
 import numpy as np
 
 from .fragment import (
+    D_CBLEND,
+    D_DZFAIL,
+    D_DZPASS,
     D_MODE,
     D_RGBA,
+    D_SMAX,
+    D_STENCIL,
     D_SWM,
     D_ZMASK,
+    D_ZTEST,
+    D_ZWRITE,
+    LO_SRC,
+    MODE_COLOUR,
     MODE_GENERAL,
     MODE_ZONLY,
     MODE_ZSTENCIL,
+    MODE_ZSTENCIL_ADD,
+    S_BLEND_DF,
+    S_BLEND_SF,
     S_DRAW_BACK,
     S_DRAW_FRONT,
     S_SX0,
@@ -31,7 +43,9 @@ from .fragment import (
     S_SY1,
     S_WMPACK,
     S_ZFUNC,
+    add_sat,
     cmp_pass,
+    combine,
     fragment,
     round_c,
     round_z,
@@ -99,6 +113,9 @@ def _triangle_rows(
         mode = MODE_GENERAL
     colour = dv[D_RGBA] != 0
     zfunc = st[S_ZFUNC]
+    dpass = dv[D_DZPASS]
+    dfail = dv[D_DZFAIL]
+    smax = dv[D_SMAX]
     for y in range(ylo, yhi + 1):
         if edge_mode:
             xl, xr = xlo, xhi
@@ -107,24 +124,42 @@ def _triangle_rows(
             if xl > xr:
                 continue
         za = z0 + dzdy * (y - y0)
-        if mode == MODE_ZSTENCIL:
+        if mode == MODE_ZSTENCIL_ADD:
+            zrow = zbuf[y]
+            srow = sten[y]
+            lt = (zfunc & 1) != 0
+            eq = (zfunc & 2) != 0
+            gt = (zfunc & 4) != 0
+            for x in range(xl, xr + 1):
+                ux = np.uintp(x)  # unsigned: no negative-index wraparound, so it vectorizes
+                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                zb = np.int64(zrow[ux])
+                passed = (lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))
+                sv = np.int64(srow[ux]) + (dpass if passed else dfail)
+                srow[ux] = min(max(sv, 0), smax)
+        elif mode == MODE_COLOUR:
+            _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
+                         front, back, zbuf, sten)
+        elif mode == MODE_ZSTENCIL:
             zrow = zbuf[y]
             srow = sten[y]
             t0 = tab[0]
             t1 = tab[1]
             for x in range(xl, xr + 1):
+                ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                s = srow[x]
-                if cmp_pass(zfunc, zi, np.int64(zrow[x])):
-                    srow[x] = t0[s]
+                s = srow[ux]
+                if cmp_pass(zfunc, zi, np.int64(zrow[ux])):
+                    srow[ux] = t0[s]
                 else:
-                    srow[x] = t1[s]
+                    srow[ux] = t1[s]
         elif mode == MODE_ZONLY:
             zrow = zbuf[y]
             for x in range(xl, xr + 1):
+                ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                if cmp_pass(zfunc, zi, np.int64(zrow[x])):
-                    zrow[x] = zi
+                if cmp_pass(zfunc, zi, np.int64(zrow[ux])):
+                    zrow[ux] = zi
         else:
             if colour:
                 ra = t_col[t, 0, 0] + t_col[t, 0, 2] * (y - y0)
@@ -148,6 +183,59 @@ def _triangle_rows(
 
 
 @jit
+def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
+                 front, back, zbuf, sten):
+    """MODE_COLOUR: shaded span with read-only stencil, optional z, simple blend."""
+    buf = back[y] if st[S_DRAW_BACK] else front[y]
+    ztest = dv[D_ZTEST] != 0
+    zwrite = dv[D_ZWRITE] != 0
+    stest = dv[D_STENCIL] != 0
+    zfunc = st[S_ZFUNC]
+    lt = (zfunc & 1) != 0
+    eq = (zfunc & 2) != 0
+    gt = (zfunc & 4) != 0
+    blend = dv[D_CBLEND]
+    sf = st[S_BLEND_SF]
+    df = st[S_BLEND_DF]
+    wm = st[S_WMPACK] & 0xFFFFFFFF
+    keep = ~wm & 0xFFFFFFFF
+    zrow = zbuf[y]
+    srow = sten[y]
+    spass = tab[2]
+    dy = y - y0
+    ra = t_col[t, 0, 0] + t_col[t, 0, 2] * dy
+    ga = t_col[t, 1, 0] + t_col[t, 1, 2] * dy
+    ba = t_col[t, 2, 0] + t_col[t, 2, 2] * dy
+    aa = t_col[t, 3, 0] + t_col[t, 3, 2] * dy
+    rdx = t_col[t, 0, 1]
+    gdx = t_col[t, 1, 1]
+    bdx = t_col[t, 2, 1]
+    adx = t_col[t, 3, 1]
+    for x in range(xl, xr + 1):
+        ux = np.uintp(x)
+        if stest and spass[srow[ux]] == 0:
+            continue
+        if ztest:
+            zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+            zb = np.int64(zrow[ux])
+            if not ((lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))):
+                continue
+            if zwrite:
+                zrow[ux] = zi
+        dx = x - x0
+        src = (round_c(ra + rdx * dx) | (round_c(ga + gdx * dx) << 8)
+               | (round_c(ba + bdx * dx) << 16) | (round_c(aa + adx * dx) << 24))
+        dst = np.int64(buf[ux])
+        if blend == 0:
+            out = src
+        elif blend == 1:
+            out = add_sat(src, dst)
+        else:
+            out = combine(src, dst, sf, df, LO_SRC, 0xFFFFFFFF)
+        buf[ux] = (dst & keep) | (out & wm)
+
+
+@jit
 def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten):
     ylo = max(y_lo, st[S_SY0])
     yhi = min(y_hi, st[S_SY1])
@@ -162,25 +250,29 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten):
             if st[S_DRAW_BACK]:
                 row = back[y]
                 for x in range(xlo, xhi + 1):
-                    row[x] = (np.int64(row[x]) & keep) | val
+                    ux = np.uintp(x)
+                    row[ux] = (np.int64(row[ux]) & keep) | val
             if st[S_DRAW_FRONT]:
                 row = front[y]
                 for x in range(xlo, xhi + 1):
-                    row[x] = (np.int64(row[x]) & keep) | val
+                    ux = np.uintp(x)
+                    row[ux] = (np.int64(row[ux]) & keep) | val
     if planes & CLEAR_Z:
         zmask = dv[D_ZMASK]
         zval = c_vals[c, 2]
         for y in range(ylo, yhi + 1):
             row = zbuf[y]
             for x in range(xlo, xhi + 1):
-                row[x] = write_z(np.int64(row[x]), zval, zmask)
+                ux = np.uintp(x)
+                row[ux] = write_z(np.int64(row[ux]), zval, zmask)
     if planes & CLEAR_STENCIL:
         wm = dv[D_SWM]
         sval = c_vals[c, 3] & wm
         for y in range(ylo, yhi + 1):
             row = sten[y]
             for x in range(xlo, xhi + 1):
-                row[x] = (row[x] & ~wm) | sval
+                ux = np.uintp(x)
+                row[ux] = (row[ux] & ~wm) | sval
 
 
 @jit
