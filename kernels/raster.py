@@ -14,6 +14,22 @@ from .options import inline, jit
 
 
 @inline
+def floor_div(k, a):
+    """Exact ``k // a`` for ``a > 0`` without an integer division instruction.
+
+    Integer division costs tens of cycles and a small triangle needs three per row;
+    |k| < 2**52 and a < 2**34 here, so the float64 quotient is within one of the
+    exact one and a single correction step each way makes it exact.
+    """
+    q = np.int64(np.floor(k / a))
+    if q * a > k:
+        q -= 1
+    elif (q + 1) * a <= k:
+        q += 1
+    return q
+
+
+@inline
 def row_span(edge, y, xlo, xhi):
     """Inclusive pixel span ``[xl, xr]`` of row ``y`` clipped to ``[xlo, xhi]``.
 
@@ -25,11 +41,11 @@ def row_span(edge, y, xlo, xhi):
         a = edge[e, 0]
         k = edge[e, 1] * y + edge[e, 2]
         if a > 0:
-            lo = -(k // a)
+            lo = -floor_div(k, a)
             if lo > xl:
                 xl = lo
         elif a < 0:
-            hi = k // (-a)
+            hi = floor_div(k, -a)
             if hi < xr:
                 xr = hi
         elif k < 0:

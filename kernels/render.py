@@ -51,7 +51,7 @@ from .fragment import (
     round_z,
     write_z,
 )
-from .options import jit, parallel_jit
+from .options import inline, jit, parallel_jit
 from .raster import covers, row_span
 
 KIND_TRIANGLE = 0
@@ -61,8 +61,8 @@ CLEAR_COLOUR, CLEAR_Z, CLEAR_STENCIL = 1, 2, 4
 
 
 @jit
-def bin_primitives(py0, py1, nprims, band_h, nbands):
-    """Bucket primitives into bands of rows, keeping their order.
+def bin_primitives(py0, py1, nprims, band_shift, nbands):
+    """Bucket primitives into bands of ``2**band_shift`` rows, keeping their order.
 
     Returns
     -------
@@ -72,8 +72,8 @@ def bin_primitives(py0, py1, nprims, band_h, nbands):
     """
     counts = np.zeros(nbands + 1, dtype=np.int64)
     for p in range(nprims):
-        b0 = max(py0[p], 0) // band_h
-        b1 = min(py1[p] // band_h, nbands - 1)
+        b0 = max(py0[p], 0) >> band_shift
+        b1 = min(py1[p] >> band_shift, nbands - 1)
         for b in range(b0, b1 + 1):
             counts[b + 1] += 1
     for b in range(nbands):
@@ -81,15 +81,15 @@ def bin_primitives(py0, py1, nprims, band_h, nbands):
     items = np.empty(counts[nbands], dtype=np.int64)
     fill = counts[:nbands].copy()
     for p in range(nprims):
-        b0 = max(py0[p], 0) // band_h
-        b1 = min(py1[p] // band_h, nbands - 1)
+        b0 = max(py0[p], 0) >> band_shift
+        b1 = min(py1[p] >> band_shift, nbands - 1)
         for b in range(b0, b1 + 1):
             items[fill[b]] = p
             fill[b] += 1
     return counts, items
 
 
-@jit
+@inline
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only,
@@ -297,7 +297,7 @@ def render_batch(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    band_h, edge_mode, general_only, nthreads,
+    band_shift, edge_mode, general_only, nthreads,
 ):
     """Render ``nprims`` primitives of a batch into the planes.
 
@@ -320,8 +320,8 @@ def render_batch(
         Colour buffers (a (1, 1) dummy when absent).
     zbuf : ndarray, shape (H, W), int32; sten : ndarray, shape (H, W), uint8
         Depth and stencil planes (a (1, 1) dummy when absent).
-    band_h : int
-        Rows per band.
+    band_shift : int
+        Bands are ``2**band_shift`` rows (a shift, not a division, when binning).
     edge_mode, general_only : bool
         Test switches: edge-function rasterizer instead of spans; the general
         per-fragment path instead of the fast span loops.
@@ -330,8 +330,9 @@ def render_batch(
         ``nthreads``-th band, which balances load on scenes with uneven depth.
     """
     height = max(front.shape[0], back.shape[0], zbuf.shape[0], sten.shape[0])
-    nbands = (height + band_h - 1) // band_h
-    starts, items = bin_primitives(p_y0, p_y1, nprims, band_h, nbands)
+    band_h = 1 << band_shift
+    nbands = (height + band_h - 1) >> band_shift
+    starts, items = bin_primitives(p_y0, p_y1, nprims, band_shift, nbands)
     for tid in numba.prange(nthreads):
         for b in range(tid, nbands, nthreads):
             y_lo = b * band_h

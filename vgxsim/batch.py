@@ -30,7 +30,7 @@ from vgxsim.state.raster import FLAT, ROW, ROW_SIZE, RasterState
 
 __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL"]
 
-BAND_ROWS = 16
+BAND_SHIFT = 5  # bands of 32 rows: a 1280-wide band of z+stencil+colour fits in L2
 MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
 
 
@@ -251,7 +251,7 @@ class CommandBatch:
             self.c_vals, self.c_state,
             states, derived, tables,
             front, back, z, st,
-            BAND_ROWS, self.edge_mode, self.general_only, numba.get_num_threads(),
+            BAND_SHIFT, self.edge_mode, self.general_only, numba.get_num_threads(),
         )
         self.flushes += 1
         self._reset()
