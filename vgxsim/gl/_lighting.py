@@ -1,3 +1,156 @@
-"""IRIS GL calls: lighting."""
+"""IRIS GL lighting calls: lmdef, lmbind, lmcolor.
 
-__all__: list[str] = []
+The definitions and the equation live in :mod:`vgxsim.lighting`; these calls add the
+IRIS GL argument conventions and the binding rules of lmbind(3G):
+
+* lighting is on iff a MATERIAL and an LMODEL are bound (index 0 unbinds);
+* a light's POSITION and SPOTDIRECTION go through the modelview current *at
+  lmbind* (moving the modelview afterwards does not move the light), and again when
+  a bound light is redefined with lmdef (project note irisgl_reference.md 1.6);
+* binding a material forgets lmcolor changes (lmcolor(3G): "lmcolor changes are
+  lost whenever a new material is bound").
+
+Errors of :mod:`vgxsim.lighting` come back as :class:`GLValueError` naming the call.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from vgxsim import GL
+from vgxsim.lighting import LightingError
+
+from ._core import (
+    GLTypeError,
+    GLValueError,
+    as_int,
+    check_token,
+    current,
+    describe,
+    gl_function,
+)
+
+__all__ = ["lmdef", "lmbind", "lmcolor"]
+
+_DEFTYPES = (int(GL.DEFMATERIAL), int(GL.DEFLIGHT), int(GL.DEFLMODEL))
+_LIGHTS = {int(GL.LIGHT0) + i: i for i in range(8)}
+_TARGETS = (int(GL.MATERIAL), int(GL.BACKMATERIAL), int(GL.LMODEL), *_LIGHTS)
+_TARGET_DEF = {int(GL.MATERIAL): (int(GL.DEFMATERIAL), "material", "DEFMATERIAL"),
+               int(GL.BACKMATERIAL): (int(GL.DEFMATERIAL), "material", "DEFMATERIAL"),
+               int(GL.LMODEL): (int(GL.DEFLMODEL), "lighting model", "DEFLMODEL")}
+_SHORT_MAX = 0x7FFF
+
+
+def _reason(err: LightingError) -> str:
+    """The message of a LightingError without its own "lmdef(...): " prefix."""
+    msg = str(err)
+    head, sep, tail = msg.partition("): ")
+    return tail if sep and "(" in head else msg
+
+
+def _props(args: tuple, props) -> list:
+    if isinstance(props, (str, bytes)) or not isinstance(props, (Sequence, np.ndarray)):
+        raise GLTypeError(f"{describe('lmdef', args)}: props must be a flat sequence of "
+                          f"numbers, not {type(props).__name__}")
+    return list(np.asarray(props).reshape(-1).tolist()) if isinstance(
+        props, np.ndarray) else list(props)
+
+
+@gl_function()
+def lmdef(deftype: int, index: int, *rest) -> None:
+    """Define or change a material, light or lighting model (lmdef(3G)).
+
+    Two forms are accepted:
+
+    * ``lmdef(deftype, index, props)`` -- the historical Python binding's form, the
+      count being ``len(props)``;
+    * ``lmdef(deftype, index, np, props)`` -- the C form: ``np`` floats of
+      ``props`` are read, or, with ``np`` 0, the list up to its LMNULL.
+
+    ``props`` is a flat list ``token, values..., token, values..., LMNULL``; an
+    existing definition keeps the properties not listed.  Index 0 is reserved.
+    """
+    args = (deftype, index) + rest
+    ctx = current("lmdef", args)
+    dt = as_int("lmdef", args, "deftype", deftype)
+    if dt not in _DEFTYPES:
+        raise GLValueError(f"{describe('lmdef', args)}: deftype {dt} is not a valid token "
+                           "(DEFMATERIAL, DEFLIGHT or DEFLMODEL)")
+    idx = as_int("lmdef", args, "index", index)
+    if len(rest) == 1:
+        props = _props(args, rest[0])
+    elif len(rest) == 2:
+        count = as_int("lmdef", args, "np", rest[0])
+        props = _props(args, rest[1])
+        if count < 0 or count > len(props):
+            raise GLValueError(f"{describe('lmdef', args)}: np {count} is outside "
+                               f"0..{len(props)} (the length of props)")
+        if count:
+            props = props[:count]
+    else:
+        raise GLTypeError(f"{describe('lmdef', args)}: expected lmdef(deftype, index, props)"
+                          " or lmdef(deftype, index, np, props)")
+    try:
+        ctx.lighting.lmdef(dt, idx, props)
+    except LightingError as err:
+        raise GLValueError(f"{describe('lmdef', args)}: {_reason(err)}") from None
+    if dt == int(GL.DEFLIGHT):
+        # A bound light that is redefined is re-sent, through the current modelview.
+        for slot, (bound_index, _entry) in list(ctx.bound["lights"].items()):
+            if bound_index == idx:
+                ctx.bind_light(slot, idx)
+    elif dt == int(GL.DEFMATERIAL) and ctx.bound["material"] == idx:
+        ctx.lmcolor_set = False  # the hardware material is reloaded
+
+
+@gl_function()
+def lmbind(target: int, index: int) -> None:
+    """Bind definition ``index`` to MATERIAL, BACKMATERIAL, LIGHT0..LIGHT7 or LMODEL
+    (lmbind(3G)); index 0 unbinds.  Binding an undefined index is an error.
+
+    A light is transformed to eye space here, by the current modelview.
+    BACKMATERIAL is stored; two-sided lighting (TWOSIDE) is not applied by the
+    per-vertex stage yet.
+    """
+    args = (target, index)
+    ctx = current("lmbind", args)
+    t = as_int("lmbind", args, "target", target)
+    if t not in _TARGETS:
+        raise GLValueError(f"{describe('lmbind', args)}: target {t} is not a valid token "
+                           "(MATERIAL, BACKMATERIAL, LIGHT0..LIGHT7 or LMODEL)")
+    idx = as_int("lmbind", args, "index", index)
+    if not 0 <= idx <= _SHORT_MAX:
+        raise GLValueError(f"{describe('lmbind', args)}: index {idx} is outside "
+                           f"0..{_SHORT_MAX}")
+    if t in _LIGHTS:
+        if idx and not ctx.lighting.is_defined(int(GL.DEFLIGHT), idx):
+            raise GLValueError(f"{describe('lmbind', args)}: light {idx} is not defined "
+                               f"(define it with lmdef(DEFLIGHT, {idx}, ...))")
+        ctx.bind_light(_LIGHTS[t], idx)
+        return
+    deftype, what, dname = _TARGET_DEF[t]
+    if idx and not ctx.lighting.is_defined(deftype, idx):
+        raise GLValueError(f"{describe('lmbind', args)}: {what} {idx} is not defined "
+                           f"(define it with lmdef({dname}, {idx}, ...))")
+    key = {int(GL.MATERIAL): "material", int(GL.BACKMATERIAL): "backmaterial",
+           int(GL.LMODEL): "lmodel"}[t]
+    ctx.bound[key] = idx
+    if t == int(GL.MATERIAL):
+        ctx.lmcolor_set = False
+
+
+@gl_function()
+def lmcolor(mode: int) -> None:
+    """What RGB colour commands do while lighting is on (lmcolor(3G)).
+
+    LMC_COLOR (default) sets the current colour; LMC_EMISSION, LMC_AMBIENT,
+    LMC_DIFFUSE, LMC_SPECULAR and LMC_AD set that property of the bound material
+    (DIFFUSE and AD take alpha as ALPHA) from the next colour command on; LMC_NULL
+    ignores colour commands.
+    """
+    args = (mode,)
+    ctx = current("lmcolor", args)
+    ctx.lmcolor_mode = check_token("lmcolor", args, "mode", mode, range(7), "LMC_")
+    ctx.lmcolor_set = False

@@ -1,3 +1,498 @@
-"""IRIS GL calls: raster."""
+"""IRIS GL raster-state calls: z-buffer, stencil, masks, blending, faces, lines, clears.
 
-__all__: list[str] = []
+Each call validates its arguments (tokens against their gl.h family, ranges from the
+manual pages) and stores into ``ctx.raster`` (:class:`RasterRegisters`); what the
+registers mean per fragment is docs/numeric_model.md section 6.  Masks typed
+``unsigned long`` in C are taken modulo 2**32 as the C conversion does, so the 1991
+article's ``zwritemask(0xfffffffff)`` (nine f's) means all ones.
+
+Accepted but not modelled (stored for the queries only): line/point/polygon
+smoothing (linesmooth, pntsmooth, polysmooth), dither, polymode other than PYM_FILL
+(polygons are still filled), glcompat modes other than GLC_ZRANGEMAP.
+"""
+
+from __future__ import annotations
+
+import math
+
+from vgxsim import GL
+from vgxsim.state.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
+from vgxsim.state.planes import ZMAX, ZMIN
+
+from ._color import packed_colour
+from ._core import (
+    GLUsageError,
+    GLValueError,
+    as_float,
+    as_int,
+    check_token,
+    current,
+    describe,
+    gl_function,
+)
+
+__all__ = [
+    "zbuffer", "zfunction", "zwritemask", "zclear", "czclear", "lsetdepth", "setdepth",
+    "stencil", "sclear", "swritemask", "wmpack", "RGBwritemask", "blendfunction",
+    "afunction", "logicop", "backface", "frontface", "getbackface", "shademodel", "getsm",
+    "linewidth", "linewidthf", "getlwidth", "deflinestyle", "setlinestyle", "getlstyle",
+    "lsrepeat", "getlsrepeat", "linesmooth", "pntsmooth", "polysmooth", "pntsize",
+    "pntsizef", "polymode", "getpolymode", "dither", "glcompat", "clear",
+]
+
+_U32 = 0xFFFFFFFF
+_CMP = range(8)  # ZF_*, SF_*, AF_*: NEVER 0 .. ALWAYS 7
+_STOPS = range(6)  # ST_KEEP 0 .. ST_INVERT 5
+_SHORT_MAX = 0x7FFF
+
+
+def _u32(name: str, args: tuple, what: str, v) -> int:
+    """An ``unsigned long`` argument: any int, reduced modulo 2**32 like C."""
+    return as_int(name, args, what, v) & _U32
+
+
+def _in_range(name: str, args: tuple, what: str, v, lo: int, hi: int, why: str = "") -> int:
+    iv = as_int(name, args, what, v)
+    if not lo <= iv <= hi:
+        extra = f" ({why})" if why else ""
+        raise GLValueError(f"{describe(name, args)}: {what} {iv} is outside {lo}..{hi}{extra}")
+    return iv
+
+
+# -- z-buffer ----------------------------------------------------------------------
+@gl_function()
+def zbuffer(b: int) -> None:
+    """Enable (any non-zero) or disable the z test and z writes (zbuffer(3G))."""
+    ctx = current("zbuffer", (b,))
+    ctx.raster.set(zbuffer=as_int("zbuffer", (b,), "b", b) != 0)
+
+
+@gl_function()
+def zfunction(func: int) -> None:
+    """Comparison of incoming against stored z, ZF_NEVER..ZF_ALWAYS; ZF_LEQUAL is the
+    default (zfunction(3G))."""
+    args = (func,)
+    ctx = current("zfunction", args)
+    ctx.raster.set(zfunc=check_token("zfunction", args, "func", func, _CMP, "ZF_"))
+
+
+@gl_function()
+def zwritemask(mask: int) -> None:
+    """Which z bits are written (zwritemask(3G)); 0 keeps z while still testing it."""
+    ctx = current("zwritemask", (mask,))
+    ctx.raster.set(zwritemask=_u32("zwritemask", (mask,), "mask", mask))
+
+
+@gl_function()
+def zclear(*ignored) -> None:
+    """Set z to GD_ZMAX inside the raster rectangle, through zwritemask (zclear(3G)).
+
+    zclear takes no argument, but the 1991 shadow article calls
+    ``zclear(getgdesc(GD_ZMAX))`` (pre-ANSI C passed and ignored it), so one int is
+    accepted and ignored: the value written is always GD_ZMAX.
+    """
+    ctx = current("zclear", ignored)
+    if len(ignored) > 1:
+        raise GLUsageError(f"{describe('zclear', ignored)}: zclear takes no arguments")
+    for v in ignored:
+        as_int("zclear", ignored, "the ignored argument", v)
+    ctx.clear_planes(CLEAR_Z, z=ZMAX)
+
+
+@gl_function()
+def czclear(cval: int, zval: int) -> None:
+    """Clear colour to ``cval`` (packed 0xAABBGGRR, or an index in cmode) and z to
+    ``zval`` at once, through wmpack and zwritemask, in the raster rectangle
+    (czclear(3G)).  ``zval`` must lie in GD_ZMIN..GD_ZMAX."""
+    args = (cval, zval)
+    ctx = current("czclear", args)
+    c = _u32("czclear", args, "cval", cval)
+    z = _in_range("czclear", args, "zval", zval, ZMIN, ZMAX, "getgdesc(GD_ZMIN..GD_ZMAX)")
+    ctx.clear_planes(CLEAR_COLOUR | CLEAR_Z, colour=c, z=z)
+
+
+def _depth_limits(ctx) -> tuple[int, int, str]:
+    # lsetdepth(3G): with glcompat(GLC_ZRANGEMAP, 1) "the minimum is 0x0 and the
+    # maximum is 0x7FFFFF", else the hardware range GD_ZMIN..GD_ZMAX.
+    if ctx.compat.get(int(GL.GLC_ZRANGEMAP), 0):
+        return 0, 0x7FFFFF, "glcompat(GLC_ZRANGEMAP, 1) range"
+    return ZMIN, ZMAX, "getgdesc(GD_ZMIN..GD_ZMAX)"
+
+
+@gl_function()
+def lsetdepth(near: int, far: int) -> None:
+    """Map the near and far clipping planes to these z values (lsetdepth(3G)).
+
+    ``near > far`` is allowed (reversed depth, used with ZF_GREATER).  Under
+    GLC_ZRANGEMAP 1 the range 0..0x7FFFFF is accepted and used as it is: those are
+    valid hardware z values, so no remapping is needed for depth comparisons.
+    """
+    args = (near, far)
+    ctx = current("lsetdepth", args)
+    lo, hi, why = _depth_limits(ctx)
+    n = _in_range("lsetdepth", args, "near", near, lo, hi, why)
+    f = _in_range("lsetdepth", args, "far", far, lo, hi, why)
+    ctx.depth_range = (n, f)
+
+
+@gl_function()
+def setdepth(near: int, far: int) -> None:
+    """Obsolete 16-bit form of :func:`lsetdepth` (Screencoord = short arguments).
+
+    As in IGL the values are used unscaled: setdepth(n, f) is lsetdepth(n, f) with
+    both limited to -0x8000..0x7FFF.
+    """
+    args = (near, far)
+    ctx = current("setdepth", args)
+    n = _in_range("setdepth", args, "near", near, -0x8000, _SHORT_MAX, "Screencoord")
+    f = _in_range("setdepth", args, "far", far, -0x8000, _SHORT_MAX, "Screencoord")
+    ctx.depth_range = (n, f)
+
+
+# -- stencil ----------------------------------------------------------------------
+@gl_function()
+def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
+            zpass: int) -> None:
+    """Set the stencil test and operations (stencil(3G)).
+
+    ``fail`` applies when the stencil test fails, ``pass_`` when it passes and the z
+    test fails, ``zpass`` when both pass -- and ``pass_`` also when z-buffering is
+    off ("zpass ... is not significant when the z-buffer is not enabled").  With
+    ``enable`` FALSE the other arguments are ignored (their previous values kept).
+    Enabling without stencil planes (stensize 0) is stored but has no effect: the
+    manual allows stencil only where planes exist, and the kernels skip the test.
+    """
+    args = (enable, ref, func, mask, fail, pass_, zpass)
+    ctx = current("stencil", args)
+    on = as_int("stencil", args, "enable", enable) != 0
+    if not on:
+        ctx.raster.set(stencil=(False,) + tuple(ctx.raster.stencil[1:]))
+        return
+    r = _u32("stencil", args, "ref", ref)
+    fn = check_token("stencil", args, "func", func, _CMP, "SF_")
+    m = _u32("stencil", args, "mask", mask)
+    ops = [check_token("stencil", args, what, v, _STOPS, "ST_")
+           for what, v in (("fail", fail), ("pass", pass_), ("zpass", zpass))]
+    ctx.raster.set(stencil=(True, r, fn, m, ops[0], ops[1], ops[2]))
+
+
+@gl_function()
+def sclear(sval: int) -> None:
+    """Set the stencil planes to ``sval`` in the raster rectangle, through swritemask
+    (sclear(3G)); nothing happens without stencil planes."""
+    ctx = current("sclear", (sval,))
+    ctx.clear_planes(CLEAR_STENCIL, stencil=_u32("sclear", (sval,), "sval", sval))
+
+
+@gl_function()
+def swritemask(mask: int) -> None:
+    """Which stencil bits may change; bits above the configured planes are ignored
+    (swritemask(3G))."""
+    ctx = current("swritemask", (mask,))
+    ctx.raster.set(swritemask=_u32("swritemask", (mask,), "mask", mask))
+
+
+# -- colour write masks, blending, alpha test, logic ops -----------------------------
+def _need_rgb(ctx, name: str, args: tuple) -> None:
+    if not ctx.config.rgb:
+        raise GLUsageError(f"{describe(name, args)}: it is an error to call {name} while "
+                           "the framebuffer is in colour map mode (wmpack(3G)); use "
+                           "writemask()")
+
+
+@gl_function()
+def wmpack(mask: int) -> None:
+    """Packed 0xAABBGGRR colour write mask (wmpack(3G)): ``wmpack(0xFF)`` writes red
+    only, ``wmpack(0)`` no colour at all."""
+    args = (mask,)
+    ctx = current("wmpack", args)
+    _need_rgb(ctx, "wmpack", args)
+    ctx.raster.set(wmpack=_u32("wmpack", args, "mask", mask))
+
+
+@gl_function()
+def RGBwritemask(red: int, green: int, blue: int) -> None:
+    """8-bit red, green and blue write masks; "the alpha mask component is set to
+    enable writing to all alpha bitplanes" and "bits 8 through 15 of each component
+    specification are ignored" (RGBwritemask(3G))."""
+    args = (red, green, blue)
+    ctx = current("RGBwritemask", args)
+    _need_rgb(ctx, "RGBwritemask", args)
+    r, g, b = (as_int("RGBwritemask", args, n, v) & 0xFF
+               for n, v in zip(("red", "green", "blue"), args, strict=True))
+    ctx.raster.set(wmpack=r | (g << 8) | (b << 16) | (0xFF << 24))
+
+
+_POST_VGX_BF = range(9, 15)  # BF_CA .. BF_MAX (later IRIX gl.h, RealityEngine)
+
+
+def _blend_factor(args: tuple, what: str, v, allowed: range) -> int:
+    iv = as_int("blendfunction", args, what, v)
+    if iv in _POST_VGX_BF:
+        raise GLValueError(f"{describe('blendfunction', args)}: {what} {iv} (BF_CA..BF_MAX)"
+                           " is a later, RealityEngine-era factor, not available on the VGX")
+    if iv not in allowed:
+        if what == "dfactr" and iv == int(GL.BF_MIN_SA_MDA):
+            raise GLValueError(f"{describe('blendfunction', args)}: BF_MIN_SA_MDA is a "
+                               "source factor only")
+        raise GLValueError(f"{describe('blendfunction', args)}: {what} {iv} is not a valid "
+                           "token (BF_*)")
+    return iv
+
+
+@gl_function()
+def blendfunction(sfactr: int, dfactr: int) -> None:
+    """Blend factors (blendfunction(3G)); (BF_ONE, BF_ZERO) is no blending.
+
+    Values 2 and 3 are BF_DC/BF_MDC as a source factor and BF_SC/BF_MSC as a
+    destination factor; BF_MIN_SA_MDA is a source factor only.  Blending and logic
+    operations exclude each other: a blending function other than (BF_ONE, BF_ZERO)
+    resets logicop to LO_SRC (IGL records the manual saying so).
+    """
+    args = (sfactr, dfactr)
+    ctx = current("blendfunction", args)
+    sf = _blend_factor(args, "sfactr", sfactr, range(0, 9))
+    df = _blend_factor(args, "dfactr", dfactr, range(0, 8))
+    if (sf, df) != (int(GL.BF_ONE), int(GL.BF_ZERO)):
+        ctx.raster.set(blend=(sf, df), logicop=int(GL.LO_SRC))
+    else:
+        ctx.raster.set(blend=(sf, df))
+
+
+@gl_function()
+def afunction(ref: int, func: int) -> None:
+    """Alpha test: a fragment is kept iff ``alpha FUNC ref`` (afunction(3G)); ref is
+    0..255, func AF_NEVER..AF_ALWAYS (AF_ALWAYS, the default, disables the test)."""
+    args = (ref, func)
+    ctx = current("afunction", args)
+    r = _in_range("afunction", args, "ref", ref, 0, 255, "an 8-bit alpha")
+    f = check_token("afunction", args, "func", func, _CMP, "AF_")
+    ctx.raster.set(afunction=(r, f))
+
+
+@gl_function()
+def logicop(opcode: int) -> None:
+    """Bitwise operation of source and destination words, LO_ZERO..LO_ONE
+    (logicop(3G)); any op but LO_SRC resets blending to (BF_ONE, BF_ZERO)."""
+    args = (opcode,)
+    ctx = current("logicop", args)
+    op = check_token("logicop", args, "opcode", opcode, range(16), "LO_")
+    if op != int(GL.LO_SRC):
+        ctx.raster.set(logicop=op, blend=(int(GL.BF_ONE), int(GL.BF_ZERO)))
+    else:
+        ctx.raster.set(logicop=op)
+
+
+# -- faces and shading -----------------------------------------------------------------
+@gl_function()
+def backface(b: int) -> None:
+    """Cull polygons whose window-space vertices run clockwise (backface(3G))."""
+    ctx = current("backface", (b,))
+    ctx.raster.set(backface=as_int("backface", (b,), "b", b) != 0)
+
+
+@gl_function()
+def frontface(b: int) -> None:
+    """Cull counter-clockwise (front-facing) polygons (frontface(3G))."""
+    ctx = current("frontface", (b,))
+    ctx.raster.set(frontface=as_int("frontface", (b,), "b", b) != 0)
+
+
+@gl_function(record=False)
+def getbackface() -> int:
+    """1 if backface(TRUE) is in effect, else 0 (getbackface(3G))."""
+    return int(bool(current("getbackface").raster.backface))
+
+
+@gl_function()
+def shademodel(mode: int) -> None:
+    """FLAT (last vertex's colour) or GOURAUD, the default (shademodel(3G))."""
+    args = (mode,)
+    ctx = current("shademodel", args)
+    m = as_int("shademodel", args, "mode", mode)
+    if m not in (int(GL.FLAT), int(GL.GOURAUD)):
+        raise GLValueError(f"{describe('shademodel', args)}: mode {m} is not a valid token "
+                           "(FLAT or GOURAUD)")
+    ctx.raster.set(shademodel=m)
+
+
+@gl_function(record=False)
+def getsm() -> int:
+    """The shading model, FLAT or GOURAUD (getsm(3G))."""
+    return int(current("getsm").raster.shademodel)
+
+
+# -- lines and points ----------------------------------------------------------------------
+@gl_function()
+def linewidth(n: int) -> None:
+    """Line width in pixels, at least 1 (linewidth(3G))."""
+    ctx = current("linewidth", (n,))
+    ctx.raster.set(linewidth=_in_range("linewidth", (n,), "n", n, 1, _SHORT_MAX))
+
+
+@gl_function()
+def linewidthf(w: float) -> None:
+    """Float line width; rounded to the nearest whole pixel (at least 1), since
+    fractional widths only matter to smooth lines, which are not modelled."""
+    ctx = current("linewidthf", (w,))
+    v = as_float("linewidthf", (w,), "w", w)
+    if not (math.isfinite(v) and v > 0):
+        raise GLValueError(f"{describe('linewidthf', (w,))}: w must be a positive number")
+    ctx.raster.set(linewidth=min(_SHORT_MAX, max(1, math.floor(v + 0.5))))
+
+
+@gl_function(record=False)
+def getlwidth() -> int:
+    """The current line width (getlwidth(3G))."""
+    return int(current("getlwidth").raster.linewidth)
+
+
+@gl_function()
+def deflinestyle(n: int, ls: int) -> None:
+    """Define line style ``n`` as the 16-bit pattern ``ls``, bit 0 first
+    (deflinestyle(3G)).  Index 0 is the reserved solid style.  Redefining the style
+    in use changes the lines drawn from now on."""
+    args = (n, ls)
+    ctx = current("deflinestyle", args)
+    idx = as_int("deflinestyle", args, "n", n)
+    if idx == 0:
+        raise GLValueError(f"{describe('deflinestyle', args)}: index 0 is reserved for the "
+                           "solid line style")
+    idx = _in_range("deflinestyle", args, "n", n, 1, _SHORT_MAX)
+    pattern = _in_range("deflinestyle", args, "ls", ls, 0, 0xFFFF, "a 16-bit pattern")
+    ctx.linestyles[idx] = pattern
+    if ctx.linestyle_index == idx:
+        ctx.raster.set(linestyle=pattern)
+
+
+@gl_function()
+def setlinestyle(n: int) -> None:
+    """Make line style ``n`` current (setlinestyle(3G)); it must have been defined."""
+    args = (n,)
+    ctx = current("setlinestyle", args)
+    idx = as_int("setlinestyle", args, "n", n)
+    if idx not in ctx.linestyles:
+        raise GLValueError(f"{describe('setlinestyle', args)}: line style {idx} is not "
+                           "defined (deflinestyle first)")
+    ctx.linestyle_index = idx
+    ctx.raster.set(linestyle=ctx.linestyles[idx])
+
+
+@gl_function(record=False)
+def getlstyle() -> int:
+    """The current line style index (getlstyle(3G))."""
+    return int(current("getlstyle").linestyle_index)
+
+
+@gl_function()
+def lsrepeat(factor: int) -> None:
+    """Repeat each line-style bit ``factor`` times, 1..255 (lsrepeat(3G); the upper
+    limit of an 8-bit factor is assumed)."""
+    ctx = current("lsrepeat", (factor,))
+    ctx.raster.set(lsrepeat=_in_range("lsrepeat", (factor,), "factor", factor, 1, 255))
+
+
+@gl_function(record=False)
+def getlsrepeat() -> int:
+    """The current line-style repeat factor (getlsrepeat(3G))."""
+    return int(current("getlsrepeat").raster.lsrepeat)
+
+
+def _smooth(name: str, mode, allowed, family: str, key: str) -> None:
+    args = (mode,)
+    ctx = current(name, args)
+    ctx.smooth[key] = check_token(name, args, "mode", mode, allowed, family)
+
+
+@gl_function()
+def linesmooth(mode: int) -> None:
+    """Antialiased lines, SML_OFF or SML_ON with SML_SMOOTHER/SML_END_CORRECT bits
+    (linesmooth(3G)).  Accepted; smoothing is not modelled (lines stay aliased)."""
+    _smooth("linesmooth", mode, range(8), "SML_", "line")
+
+
+@gl_function()
+def pntsmooth(mode: int) -> None:
+    """Antialiased points, SMP_OFF/SMP_ON/SMP_SMOOTHER (pntsmooth(3G)).  Accepted;
+    not modelled."""
+    _smooth("pntsmooth", mode, range(4), "SMP_", "point")
+
+
+@gl_function()
+def polysmooth(mode: int) -> None:
+    """Antialiased polygons, PYSM_OFF/PYSM_ON/PYSM_SHRINK (polysmooth(3G)).  Accepted;
+    not modelled."""
+    _smooth("polysmooth", mode, range(3), "PYSM_", "polygon")
+
+
+@gl_function()
+def pntsize(n: int) -> None:
+    """Point size in pixels, at least 1 (pntsize(3G))."""
+    ctx = current("pntsize", (n,))
+    ctx.raster.set(pntsize=_in_range("pntsize", (n,), "n", n, 1, _SHORT_MAX))
+
+
+@gl_function()
+def pntsizef(n: float) -> None:
+    """Float point size, rounded to the nearest whole pixel (at least 1)."""
+    ctx = current("pntsizef", (n,))
+    v = as_float("pntsizef", (n,), "n", n)
+    if not (math.isfinite(v) and v > 0):
+        raise GLValueError(f"{describe('pntsizef', (n,))}: n must be a positive number")
+    ctx.raster.set(pntsize=min(_SHORT_MAX, max(1, math.floor(v + 0.5))))
+
+
+@gl_function()
+def polymode(mode: int) -> None:
+    """PYM_FILL, PYM_POINT, PYM_LINE, PYM_HOLLOW or PYM_LINE_FAST (polymode(3G)).
+
+    Stored for :func:`getpolymode`; only PYM_FILL is drawn -- polygons are filled
+    in every mode (outline and point rendering of polygons is not implemented).
+    """
+    args = (mode,)
+    ctx = current("polymode", args)
+    ctx.polymode = check_token("polymode", args, "mode", mode, range(1, 6), "PYM_")
+
+
+@gl_function(record=False)
+def getpolymode() -> int:
+    """The stored polymode (PYM_FILL by default)."""
+    return int(current("getpolymode").polymode)
+
+
+@gl_function()
+def dither(mode: int) -> None:
+    """DT_ON or DT_OFF (dither(3G)).  Accepted; with 8 bits per component the
+    emulator never dithers (getgdesc(GD_DITHER) is 0)."""
+    args = (mode,)
+    ctx = current("dither", args)
+    ctx.dither = check_token("dither", args, "mode", mode, (0, 1), "DT_")
+
+
+_GLC_MODES = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 15)  # GLC_OLDPOLYGON .. GLC_COMPATRATE
+
+
+@gl_function(record=False)
+def glcompat(mode: int, value: int) -> None:
+    """Set a compatibility mode (glcompat(3G)).
+
+    GLC_ZRANGEMAP (0 or 1) changes the range :func:`lsetdepth` accepts; the other
+    modes are stored only.
+    """
+    args = (mode, value)
+    ctx = current("glcompat", args)
+    m = check_token("glcompat", args, "mode", mode, _GLC_MODES, "GLC_")
+    v = as_int("glcompat", args, "value", value)
+    if m == int(GL.GLC_ZRANGEMAP) and v not in (0, 1):
+        raise GLValueError(f"{describe('glcompat', args)}: GLC_ZRANGEMAP takes 0 or 1")
+    ctx.compat[m] = v
+
+
+# -- clear ---------------------------------------------------------------------------------
+@gl_function()
+def clear() -> None:
+    """Fill the raster rectangle of the enabled draw buffers with the current colour
+    (the packed RGBA, or the colour index in cmode) through the colour write mask;
+    every test is ignored (clear(3G), docs/numeric_model.md section 8)."""
+    ctx = current("clear")
+    ctx.clear_planes(CLEAR_COLOUR, colour=packed_colour(ctx))
