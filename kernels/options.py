@@ -33,7 +33,17 @@ def parallel_jit(func=None, **overrides):
 
 
 def inline(func):
-    """Small helper inlined into its callers at the Numba IR level."""
+    """Small scalar helper: compiled into each caller, where LLVM inlines it.
+
+    (Numba's IR-level ``inline='always'`` is kept for :func:`inline_ir` only: it
+    multiplies compile time, and LLVM inlines small scalar functions anyway.)
+    """
+    return numba.njit(**{k: v for k, v in JIT_OPTIONS.items() if k != "cache"})(func)
+
+
+def inline_ir(func):
+    """Inline at the Numba IR level: for helpers that take many arrays, where a real
+    call would pay reference-count updates on every array argument."""
     return numba.njit(inline="always", **{k: v for k, v in JIT_OPTIONS.items() if k != "cache"})(
         func
     )

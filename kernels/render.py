@@ -1,6 +1,6 @@
-"""The band driver: one kernel call renders a whole command batch.
+"""The band driver: a whole command batch renders in one pass over row bands.
 
-The window is cut into bands of rows.  Each thread owns every ``nthreads``-th band
+The window is cut into bands of rows.  Each worker thread owns every ``nthreads``-th band
 and walks the batch's primitives in their original order, so the per-pixel order
 of stencil and blend operations (part of the semantics) is kept while threads never
 touch the same pixel.  A band of a full frame stays in cache while clears, the
@@ -12,7 +12,6 @@ lines expanded by :mod:`.lines`) and clears.
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 
 from .fragment import (
@@ -51,7 +50,7 @@ from .fragment import (
     round_z,
     write_z,
 )
-from .options import inline, jit, parallel_jit
+from .options import inline_ir, jit
 from .raster import covers, row_span
 
 KIND_TRIANGLE = 0
@@ -89,7 +88,7 @@ def bin_primitives(py0, py1, nprims, band_shift, nbands):
     return counts, items
 
 
-@inline
+@inline_ir
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only,
@@ -289,24 +288,36 @@ def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
                  front, back, zbuf, sten)
 
 
-@parallel_jit
-def render_batch(
-    p_kind, p_ref, p_y0, p_y1, nprims,
+@jit
+def render_bands(
+    tid, nthreads, starts, items, band_shift, height,
+    p_kind, p_ref,
     t_edge, t_box, t_z, t_zlim, t_col, t_state,
     f_xy, f_z, f_rgba, r_range, r_state,
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    band_shift, edge_mode, general_only, nthreads,
+    edge_mode, general_only,
 ):
-    """Render ``nprims`` primitives of a batch into the planes.
+    """Render every ``nthreads``-th band, starting with band ``tid``.
+
+    Called once per worker thread (the kernels release the GIL); bands are
+    disjoint rows, so threads never touch the same pixel, and inside a band the
+    primitives run in their original order.  Interleaving the bands balances load
+    on scenes whose depth complexity is uneven.
 
     Parameters
     ----------
+    tid, nthreads : int
+        This worker and the number of workers.
+    starts, items : ndarray, int64
+        Output of :func:`bin_primitives`.
+    band_shift : int
+        Bands are ``2**band_shift`` rows.
+    height : int
+        Window height.
     p_kind, p_ref : ndarray, shape (P,), int64
         Primitive kind (KIND_*) and index into that kind's arrays.
-    p_y0, p_y1 : ndarray, shape (P,), int64
-        Inclusive row range each primitive may touch (for binning).
     t_edge, t_box, t_z, t_zlim, t_col, t_state : ndarray
         Set-up triangles (see :func:`vgxsim.kernels.setup.setup_triangles`).
     f_xy, f_z, f_rgba : ndarray, shapes (F, 2) int64, (F,) int64, (F,) int64
@@ -320,40 +331,32 @@ def render_batch(
         Colour buffers (a (1, 1) dummy when absent).
     zbuf : ndarray, shape (H, W), int32; sten : ndarray, shape (H, W), uint8
         Depth and stencil planes (a (1, 1) dummy when absent).
-    band_shift : int
-        Bands are ``2**band_shift`` rows (a shift, not a division, when binning).
     edge_mode, general_only : bool
         Test switches: edge-function rasterizer instead of spans; the general
         per-fragment path instead of the fast span loops.
-    nthreads : int
-        Number of band groups (``numba.get_num_threads()``); each thread takes every
-        ``nthreads``-th band, which balances load on scenes with uneven depth.
     """
-    height = max(front.shape[0], back.shape[0], zbuf.shape[0], sten.shape[0])
     band_h = 1 << band_shift
-    nbands = (height + band_h - 1) >> band_shift
-    starts, items = bin_primitives(p_y0, p_y1, nprims, band_shift, nbands)
-    for tid in numba.prange(nthreads):
-        for b in range(tid, nbands, nthreads):
-            y_lo = b * band_h
-            y_hi = min(y_lo + band_h, height) - 1
-            for i in range(starts[b], starts[b + 1]):
-                p = items[i]
-                kind = p_kind[p]
-                ref = p_ref[p]
-                if kind == KIND_TRIANGLE:
-                    s = t_state[ref]
-                    _triangle_rows(
-                        ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
-                        states[s], derived[s], tables[s],
-                        front, back, zbuf, sten, edge_mode, general_only,
-                    )
-                elif kind == KIND_FRAGMENTS:
-                    s = r_state[ref]
-                    _fragment_run(ref, y_lo, y_hi, f_xy, f_z, f_rgba, r_range,
-                                  states[s], derived[s], tables[s],
-                                  front, back, zbuf, sten)
-                else:
-                    s = c_state[ref]
-                    _clear_rows(ref, y_lo, y_hi, c_vals, states[s], derived[s],
-                                front, back, zbuf, sten)
+    nbands = starts.shape[0] - 1
+    for b in range(tid, nbands, nthreads):
+        y_lo = b * band_h
+        y_hi = min(y_lo + band_h, height) - 1
+        for i in range(starts[b], starts[b + 1]):
+            p = items[i]
+            kind = p_kind[p]
+            ref = p_ref[p]
+            if kind == KIND_TRIANGLE:
+                s = t_state[ref]
+                _triangle_rows(
+                    ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
+                    states[s], derived[s], tables[s],
+                    front, back, zbuf, sten, edge_mode, general_only,
+                )
+            elif kind == KIND_FRAGMENTS:
+                s = r_state[ref]
+                _fragment_run(ref, y_lo, y_hi, f_xy, f_z, f_rgba, r_range,
+                              states[s], derived[s], tables[s],
+                              front, back, zbuf, sten)
+            else:
+                s = c_state[ref]
+                _clear_rows(ref, y_lo, y_hi, c_vals, states[s], derived[s],
+                            front, back, zbuf, sten)

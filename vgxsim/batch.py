@@ -10,9 +10,9 @@ pass of a frame.
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 
+from vgxsim import threads
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.fragment import derive_states
 from vgxsim.kernels.render import (
@@ -22,7 +22,8 @@ from vgxsim.kernels.render import (
     KIND_CLEAR,
     KIND_FRAGMENTS,
     KIND_TRIANGLE,
-    render_batch,
+    bin_primitives,
+    render_bands,
 )
 from vgxsim.kernels.setup import setup_triangles
 from vgxsim.state.planes import Framebuffer
@@ -244,14 +245,26 @@ class CommandBatch:
             states[:, ROW["draw_back"]] = 0
         derived, tables = derive_states(states, fb.config.stencil, True, fb.z is not None)
         front, back, z, st = fb.kernel_planes()
-        render_batch(
-            self.p_kind, self.p_ref, self.p_y0, self.p_y1, self.nprims,
+        height = fb.height
+        nbands = (height + (1 << BAND_SHIFT) - 1) >> BAND_SHIFT
+        starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, BAND_SHIFT, nbands)
+        args = (
+            starts, items, BAND_SHIFT, height, self.p_kind, self.p_ref,
             self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state,
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
-            self.c_vals, self.c_state,
-            states, derived, tables,
-            front, back, z, st,
-            BAND_SHIFT, self.edge_mode, self.general_only, numba.get_num_threads(),
+            self.c_vals, self.c_state, states, derived, tables,
+            front, back, z, st, self.edge_mode, self.general_only,
         )
+        nthreads = max(1, min(threads.get_threads(), nbands))
+        if nthreads == 1:
+            render_bands(0, 1, *args)
+        else:
+            # The kernel releases the GIL: plain threads give band parallelism without
+            # Numba's parallel=True compile cost (a large part of cold start).
+            pool = threads.pool(nthreads)
+            futures = [pool.submit(render_bands, tid, nthreads, *args)
+                       for tid in range(nthreads)]
+            for f in futures:
+                f.result()
         self.flushes += 1
         self._reset()

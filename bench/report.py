@@ -1,0 +1,173 @@
+"""Print the core benchmark table (issue 2, deliverable 9).
+
+    python bench/report.py [--quick] [--no-mesa] [--json FILE]
+
+Everything is measured side by side in one run and medians are quoted:
+* fill rates of the z+stencil (shadow-volume) pass and of the colour+blend (lit)
+  pass, each beside a loop that only touches the same memory (the ratio is the
+  figure that carries across machines);
+* 10-pixel triangles per second through the array path (transform, clip, snap,
+  setup, bin, raster);
+* thread scaling 1 -> 2 (numba.set_num_threads);
+* Mesa llvmpipe on the same workloads with LP_NUM_THREADS = 1 and 2, each in its own
+  process (llvmpipe reads the variable once);
+* cold start (empty Numba cache) and warm start to the first image, in fresh
+  processes;
+* the Heidmann 1991 shadow frame, when the example is installed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numba
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+import scenes  # noqa: E402
+
+
+def median_time(run, rounds: int) -> float:
+    run()
+    ts = []
+    for _ in range(rounds):
+        t = time.perf_counter()
+        run()
+        ts.append(time.perf_counter() - t)
+    return float(np.median(ts))
+
+
+def vgxsim_rates(rounds: int) -> dict:
+    out = {}
+    for threads in (1, 2):
+        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+        for name in ("zstencil_fill", "colour_blend_fill", "small_triangles",
+                     "touch_zstencil_run", "touch_colour_run"):
+            run, units = getattr(scenes, name)()
+            out[(name, threads)] = (median_time(run, rounds), units)
+    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    return out
+
+
+def mesa_rates() -> dict:
+    out = {}
+    env = dict(os.environ, PYTHONPATH=HERE + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    for threads in (1, 2):
+        proc = subprocess.run([sys.executable, os.path.join(HERE, "mesa_worker.py"),
+                               str(threads)], capture_output=True, text=True, env=env)
+        try:
+            data = json.loads(proc.stdout.strip().splitlines()[-1])
+        except (IndexError, json.JSONDecodeError):
+            data = {"error": proc.stderr.strip()[-300:]}
+        out[threads] = data
+    return out
+
+
+FIRST_IMAGE = r"""
+import time, sys
+t0 = float(sys.argv[1])
+from vgxsim.state.context import Context
+from vgxsim.geometry.transform import orthographic
+ctx = Context(320, 256, stencil=8)
+ctx.matrices.load_projection(orthographic(-0.5, 319.5, -0.5, 255.5, -1, 1))
+ctx.raster.set(zbuffer=True)
+ctx.clear_planes(7, 0xff000000)
+ctx.draw_arrays('polygon', [[10, 10, 0], [300, 20, 0], [160, 240, 0]],
+                [[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1]])
+img = ctx.read_rgba()
+print(time.time() - t0)
+"""
+
+
+def start_times() -> tuple[float, float]:
+    with tempfile.TemporaryDirectory() as cache:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+        res = []
+        for _ in range(2):
+            t0 = time.time()
+            proc = subprocess.run([sys.executable, "-c", FIRST_IMAGE, repr(t0)],
+                                  capture_output=True, text=True, env=env, check=True)
+            res.append(float(proc.stdout.strip().splitlines()[-1]))
+        return res[0], res[1]
+
+
+def heidmann_frame(rounds: int) -> dict | None:
+    try:
+        from vgxsim.examples import heidmann1991
+    except ImportError:
+        return None
+    out = {}
+    for threads in (1, 2):
+        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+        t = median_time(lambda: heidmann1991.render(1280, 1024, mode="shadows",
+                                                    edges="silhouette"), rounds)
+        out[threads] = t
+    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="3 rounds instead of 7")
+    ap.add_argument("--no-mesa", action="store_true")
+    ap.add_argument("--json", help="also write the raw numbers here")
+    args = ap.parse_args(argv)
+    rounds = 3 if args.quick else 7
+    rates = vgxsim_rates(rounds)
+    mesa = {} if args.no_mesa else mesa_rates()
+    cold, warm = start_times()
+    frame = heidmann_frame(rounds)
+
+    def rate(name, threads):
+        t, units = rates[(name, threads)]
+        return units / t
+
+    print(f"vgxsim benchmark (medians of {rounds}; 1280x1024; machine: {os.cpu_count()} CPUs)")
+    print()
+    hdr = f"{'workload':24s} {'1 thread':>12s} {'2 threads':>12s} {'scaling':>8s}"
+    hdr += f" {'touch ratio':>12s} {'Mesa 1T':>12s} {'Mesa 2T':>12s} {'vs Mesa 2T':>10s}"
+    print(hdr)
+    touch = {"zstencil_fill": "touch_zstencil_run", "colour_blend_fill": "touch_colour_run"}
+    units = {"zstencil_fill": "Mfrag/s", "colour_blend_fill": "Mfrag/s",
+             "small_triangles": "Mtri/s"}
+    raw = {"vgxsim": {f"{k[0]}@{k[1]}": v for k, v in rates.items()}, "mesa": mesa}
+    for name in ("zstencil_fill", "colour_blend_fill", "small_triangles"):
+        r1, r2 = rate(name, 1) / 1e6, rate(name, 2) / 1e6
+        ratio = f"{rate(name, 1) / rate(touch[name], 1):.3f}" if name in touch else "-"
+        m1 = m2 = vs = "-"
+        if 1 in mesa and name in mesa[1]:
+            t, u = mesa[1][name]
+            m1 = f"{u / t / 1e6:.1f}"
+        if 2 in mesa and name in mesa[2]:
+            t, u = mesa[2][name]
+            m2 = f"{u / t / 1e6:.1f}"
+            vs = f"{r2 / (u / t / 1e6):.2f}x"
+        print(f"{name + ' (' + units[name] + ')':24s} {r1:12.1f} {r2:12.1f} {r2 / r1:7.2f}x"
+              f" {ratio:>12s} {m1:>12s} {m2:>12s} {vs:>10s}")
+    if mesa.get(1, {}).get("renderer"):
+        print(f"\nMesa renderer: {mesa[1]['renderer']}")
+    elif mesa:
+        print(f"\nMesa: {mesa.get(1, {}).get('error', 'unavailable')}")
+    print(f"\ncold start to first image (empty Numba cache): {cold:.2f} s")
+    print(f"warm start to first image: {warm:.2f} s")
+    if frame:
+        print(f"\nHeidmann 1991 shadow frame 1280x1024: {frame[1] * 1e3:.1f} ms on 1 thread, "
+              f"{frame[2] * 1e3:.1f} ms on 2 threads")
+        raw["heidmann_frame"] = frame
+    raw["start"] = {"cold": cold, "warm": warm}
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(raw, f, indent=1, default=str)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
