@@ -1,3 +1,374 @@
-"""IRIS GL calls: readback."""
+"""IRIS GL pixel calls: lrectread, lrectwrite, readRGB, rectcopy, readdisplay,
+packrect/unpackrect, and :func:`read_pixels` for library users.
 
-__all__: list[str] = []
+Pixel words.  Colour pixels are packed 0xAABBGGRR (red in the low byte, lrectwrite(3G));
+in colour-map mode the word holds the colour index.  CPython's binding returned
+``lrectread`` as a string of native C longs (cpython_gl_module.md s.1.6); vgxsim
+returns ``bytes`` of 4-byte **little-endian** words, bottom row first, left to right,
+so ``bytes[0]`` is the red byte of the lower-left pixel.  ``np.frombuffer(s, '<u4')``
+turns it back into words.
+
+Reads see everything drawn so far (the command batch is flushed first) from the
+buffer ``readsource`` selects.  Writes (``lrectwrite``, ``rectcopy``) are queued in
+the command batch like any drawing, so they land in order with it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from vgxsim import GL
+
+from ._core import (
+    GLTypeError,
+    GLUsageError,
+    GLValueError,
+    as_int,
+    current,
+    describe,
+    gl_function,
+    session,
+)
+
+__all__ = [
+    "lrectread", "lrectwrite", "readRGB", "rectcopy", "readdisplay", "packrect",
+    "unpackrect", "read_pixels",
+]
+
+
+def _corners(name: str, args: tuple, ordered: bool = True) -> tuple[int, int, int, int]:
+    """(x1, y1, x2, y2) as ints; ``ordered`` requires x1 <= x2 and y1 <= y2."""
+    names = ("x1", "y1", "x2", "y2")
+    v = [as_int(name, args, n, a) for n, a in zip(names, args[:4], strict=True)]
+    x1, y1, x2, y2 = v
+    if ordered and (x2 < x1 or y2 < y1):
+        raise GLValueError(f"{describe(name, args)}: the rectangle is empty (x2 < x1 or "
+                           "y2 < y1); lrectread/lrectwrite take the lower-left corner first")
+    if not ordered:
+        x1, x2 = min(x1, x2), max(x1, x2)
+        y1, y2 = min(y1, y2), max(y1, y2)
+    return x1, y1, x2, y2
+
+
+def _source(ctx, name: str, args: tuple, allow_z: bool = True) -> np.ndarray:
+    """The plane ``readsource`` selects, as uint32 words (z as two's-complement words)."""
+    src = int(getattr(ctx, "readsource", GL.SRC_AUTO))
+    if src == GL.SRC_ZBUFFER:
+        if not allow_z:
+            raise GLUsageError(f"{describe(name, args)}: readsource(SRC_ZBUFFER) is set; "
+                               f"{name} reads colour (use readsource(SRC_AUTO))")
+        ctx.flush()
+        if ctx.fb.z is None:
+            raise GLUsageError(f"{describe(name, args)}: readsource(SRC_ZBUFFER) but the "
+                               "window has no z-buffer (zbsize(0) was configured)")
+        return ctx.fb.z.view(np.uint32)
+    which = {int(GL.SRC_FRONT): "front", int(GL.SRC_BACK): "back"}.get(src, "auto")
+    return ctx.colour_buffer(which)
+
+
+def _region(plane: np.ndarray, x1: int, y1: int, x2: int, y2: int) -> np.ndarray:
+    """plane[y1..y2, x1..x2] with zeros where the rectangle leaves the window (pixels
+    outside a window are undefined on IRIS; zero is the documented choice here)."""
+    h, w = plane.shape[:2]
+    out = np.zeros((y2 - y1 + 1, x2 - x1 + 1) + plane.shape[2:], dtype=plane.dtype)
+    xa, xb = max(x1, 0), min(x2, w - 1)
+    ya, yb = max(y1, 0), min(y2, h - 1)
+    if xa <= xb and ya <= yb:
+        out[ya - y1:yb - y1 + 1, xa - x1:xb - x1 + 1] = plane[ya:yb + 1, xa:xb + 1]
+    return out
+
+
+@gl_function(record=False)
+def lrectread(x1: int, y1: int, x2: int, y2: int) -> bytes:
+    """Read a rectangle of pixels, inclusive bounds (lrectread(3G)).
+
+    Returns
+    -------
+    bytes
+        ``(x2-x1+1) * (y2-y1+1)`` little-endian 32-bit words, bottom row first:
+        packed 0xAABBGGRR colours (colour indices in cmode), or signed z values when
+        ``readsource(SRC_ZBUFFER)`` is set.  Pixels outside the window read as 0.
+    """
+    args = (x1, y1, x2, y2)
+    r = _corners("lrectread", args)
+    ctx = current("lrectread", args)
+    words = _region(_source(ctx, "lrectread", args), *r)
+    return np.ascontiguousarray(words, dtype="<u4").tobytes()
+
+
+def _words(name: str, args: tuple, data, n: int) -> np.ndarray:
+    """The pixel array of lrectwrite: bytes of >= n little-endian words, or n ints."""
+    if isinstance(data, (bytes, bytearray, memoryview)):
+        raw = bytes(data)
+        if len(raw) < 4 * n:
+            raise GLValueError(f"{describe(name, args)}: data has {len(raw)} bytes, the "
+                               f"rectangle needs {n} pixels = {4 * n} bytes")
+        # CPython's binding did not check the size (so pixmode(PM_SIZE) kept working);
+        # extra bytes are ignored here, too few are an error.
+        return np.frombuffer(raw, dtype="<u4", count=n).astype(np.int64)
+    if isinstance(data, np.ndarray) or (isinstance(data, Sequence) and not isinstance(
+            data, str)):
+        arr = np.asarray(data)
+        if arr.dtype.kind not in "iub":
+            raise GLTypeError(f"{describe(name, args)}: pixel values must be integers, not "
+                              f"{arr.dtype}")
+        arr = arr.reshape(-1)
+        if arr.size != n:
+            raise GLValueError(f"{describe(name, args)}: {arr.size} pixel values for a "
+                               f"rectangle of {n} pixels")
+        # unsigned long words: negative Python ints wrap as a C cast would
+        return arr.astype(np.int64) & 0xFFFFFFFF
+    raise GLTypeError(f"{describe(name, args)}: data must be bytes (as lrectread returns) "
+                      f"or a sequence of ints, not {type(data).__name__}")
+
+
+def _write_pixels(ctx, x0: int, y0: int, words: np.ndarray, valid: np.ndarray) -> None:
+    """Queue pixel writes with lower-left corner (x0, y0): words (h, w) packed.
+
+    Pixel writes skip every test and blending (the clear state: no z, stencil or alpha
+    test) but go through the viewport, the screen mask (scrmask(3G): "pixel write and
+    pixel copy commands" are masked) and the colour write mask, to the draw buffers.
+    """
+    h, w = words.shape
+    ys, xs = np.nonzero(valid)
+    if ys.size == 0:
+        return
+    xy = np.stack([xs.astype(np.int64) + x0, ys.astype(np.int64) + y0], axis=1)
+    rs = ctx.raster.clear_state()
+    x_lo, x_hi, y_lo, y_hi = rs.scissor
+    inside = (xy[:, 0] >= x_lo) & (xy[:, 0] <= x_hi) & (xy[:, 1] >= y_lo) & (xy[:, 1] <= y_hi)
+    if not inside.any():
+        return
+    xy = np.ascontiguousarray(xy[inside])
+    rgba = np.ascontiguousarray(words[ys, xs][inside].astype(np.int64) & 0xFFFFFFFF)
+    ctx.batch.add_fragments(xy, np.zeros(xy.shape[0], np.int64), rgba, rs)
+
+
+@gl_function(record=False)
+def lrectwrite(x1: int, y1: int, x2: int, y2: int, data) -> None:
+    """Write a rectangle of packed pixels, inclusive bounds (lrectwrite(3G)).
+
+    Parameters
+    ----------
+    x1, y1, x2, y2 : int
+        Lower-left and upper-right corners, window coordinates.
+    data : bytes or sequence of int
+        ``(x2-x1+1) * (y2-y1+1)`` pixels, bottom row first: little-endian 32-bit
+        words as :func:`lrectread` returns them, or ints 0xAABBGGRR (colour indices
+        in cmode).
+
+    Notes
+    -----
+    The pixels are written unconditionally -- no z, stencil or alpha test, no
+    blending or logicop -- except for the colour write mask (``wmpack``/``writemask``)
+    and the viewport/screen mask; they go to the current draw buffers.  ``rectzoom``
+    and ``pixmode`` are not applied.
+    """
+    args = (x1, y1, x2, y2, data)
+    r = _corners("lrectwrite", args)
+    ctx = current("lrectwrite", args)
+    w, h = r[2] - r[0] + 1, r[3] - r[1] + 1
+    words = _words("lrectwrite", args, data, w * h).reshape(h, w)
+    _write_pixels(ctx, r[0], r[1], words, np.ones((h, w), bool))
+
+
+@gl_function(record=False)
+def rectcopy(x1: int, y1: int, x2: int, y2: int, newx: int, newy: int) -> None:
+    """Copy a rectangle of pixels to lower-left corner (newx, newy) (rectcopy(3G)).
+
+    The source is the ``readsource`` buffer; the copy is made before anything is
+    written, so overlapping copies work ("Self-intersecting copies work correctly").
+    The destination is masked by the viewport, the screen mask and the write mask;
+    source pixels outside the window are not copied.  ``rectzoom`` is not applied.
+    """
+    args = (x1, y1, x2, y2, newx, newy)
+    r = _corners("rectcopy", args, ordered=False)
+    nx = as_int("rectcopy", args, "newx", newx)
+    ny = as_int("rectcopy", args, "newy", newy)
+    ctx = current("rectcopy", args)
+    plane = _source(ctx, "rectcopy", args, allow_z=False)
+    words = _region(plane, *r)
+    h, w = plane.shape
+    ys = np.arange(r[1], r[3] + 1)[:, None]
+    xs = np.arange(r[0], r[2] + 1)[None, :]
+    valid = (ys >= 0) & (ys < h) & (xs >= 0) & (xs < w)
+    _write_pixels(ctx, nx, ny, words.astype(np.int64), valid)
+
+
+@gl_function(record=False)
+def readRGB(n: int) -> tuple[int, list[int], list[int], list[int]]:  # noqa: N802
+    """Read ``n`` pixels from the current character position along its row (readRGB(3G)).
+
+    Returns
+    -------
+    tuple
+        ``(count, red, green, blue)``: count pixels were read (fewer than ``n`` when
+        the row ends at the window's right edge), and three lists of ints 0..255.
+
+    Notes
+    -----
+    RGB mode only.  The character position (set by ``cmov``) moves to the pixel after
+    the last one read; it becomes undefined (``ctx.cpos_valid`` False) when that is
+    outside the viewport, and readRGB from an undefined position reads nothing.
+    readRGB is one of the calls CPython's binding left out; this is the natural
+    Python form of the C output arrays.
+    """
+    args = (n,)
+    count = as_int("readRGB", args, "n", n)
+    if count < 0:
+        raise GLValueError(f"{describe('readRGB', args)}: n must not be negative")
+    ctx = current("readRGB", args)
+    if not ctx.config.rgb:
+        raise GLUsageError(f"{describe('readRGB', args)}: readRGB works only in RGB mode "
+                           "(call RGBmode() and gconfig() first)")
+    if not getattr(ctx, "cpos_valid", True):
+        # The manual leaves reading from an undefined position undefined; nothing is
+        # read and the position stays undefined.
+        return 0, [], [], []
+    cpos = tuple(getattr(ctx, "cpos", (0, 0)))
+    x, y = int(round(float(cpos[0]))), int(round(float(cpos[1])))
+    plane = _source(ctx, "readRGB", args, allow_z=False)
+    h, w = plane.shape
+    got = 0 if not 0 <= y < h else max(0, min(count, w - x))
+    words = _region(plane, x, y, x + got - 1, y)[0] if got else np.zeros(0, np.uint32)
+    ctx.cpos = (x + got, y) + cpos[2:]
+    vl, vr, vb, vt = ctx.raster.viewport
+    if not (vl <= x + got <= vr and vb <= y <= vt):
+        # "the current character position is undefined if the new position is
+        # outside the viewport" (readRGB(3G))
+        ctx.cpos_valid = False
+    r = [int(v) for v in words & 0xFF]
+    g = [int(v) for v in (words >> 8) & 0xFF]
+    b = [int(v) for v in (words >> 16) & 0xFF]
+    return got, r, g, b
+
+
+@gl_function(record=False)
+def readdisplay(x1: int, y1: int, x2: int, y2: int, hints: int = 0) -> bytes:
+    """Read a rectangle of the screen, screen coordinates (readdisplay(3G)).
+
+    The headless screen shows every open window at its origin (later windows on
+    top, colour-mapped in cmode) on black (0); the result is packed as
+    :func:`lrectread`'s.  ``hints`` (RD_* flags) are accepted and ignored.
+    """
+    args = (x1, y1, x2, y2, hints)
+    r = _corners("readdisplay", args)
+    as_int("readdisplay", args, "hints", hints)
+    w, h = r[2] - r[0] + 1, r[3] - r[1] + 1
+    out = np.zeros((h, w), np.uint32)
+    for gid in sorted(session.windows):
+        ctx = session.windows[gid]
+        img = ctx.display_rgba()
+        words = np.ascontiguousarray(img).view("<u4").reshape(img.shape[:2])
+        ox, oy = ctx.origin if hasattr(ctx, "origin") else (0, 0)
+        out = np.where(_mask_of(words.shape, ox, oy, r),
+                       _region(words, r[0] - ox, r[1] - oy, r[2] - ox, r[3] - oy), out)
+    return np.ascontiguousarray(out, dtype="<u4").tobytes()
+
+
+def _mask_of(shape, ox: int, oy: int, r) -> np.ndarray:
+    hh, ww = shape
+    ys = np.arange(r[1], r[3] + 1)[:, None] - oy
+    xs = np.arange(r[0], r[2] + 1)[None, :] - ox
+    return (ys >= 0) & (ys < hh) & (xs >= 0) & (xs < ww)
+
+
+@gl_function(record=False)
+def packrect(width: int, height: int, packfactor: int, data: bytes) -> bytes:
+    """Shrink a ``width`` x ``height`` lrectread string to one grey byte per
+    ``packfactor`` square (CPython's ``gl.packrect``, cpython_gl_module.md s.1.6).
+
+    Each byte is ``(30 R + 59 G + 11 B) // 100`` of the first (lower-left) pixel of
+    its block; there is no averaging.
+    """
+    args = (width, height, packfactor, data)
+    w, h, pf = (as_int("packrect", args, n, v) for n, v in
+                (("width", width), ("height", height), ("packfactor", packfactor)))
+    if w <= 0 or h <= 0 or pf <= 0:
+        raise GLValueError(f"{describe('packrect', args)}: sizes must be positive")
+    if not isinstance(data, (bytes, bytearray, memoryview)) or len(data) != 4 * w * h:
+        raise GLValueError(f"{describe('packrect', args)}: data must be exactly "
+                           f"{4 * w * h} bytes (width * height longs)")
+    words = np.frombuffer(bytes(data), "<u4").reshape(h, w)[::pf, ::pf].astype(np.int64)
+    grey = (30 * (words & 0xFF) + 59 * ((words >> 8) & 0xFF) + 11 * ((words >> 16) & 0xFF))
+    return (grey // 100).astype(np.uint8).tobytes()
+
+
+@gl_function(record=False)
+def unpackrect(width: int, height: int, packfactor: int, data: bytes) -> bytes:
+    """Inverse of :func:`packrect`: each grey byte ``g`` becomes the word
+    ``g * 0x010101`` (alpha 0) over its ``packfactor`` square; returns
+    ``width * height`` words as bytes (CPython's ``gl.unpackrect``)."""
+    args = (width, height, packfactor, data)
+    w, h, pf = (as_int("unpackrect", args, n, v) for n, v in
+                (("width", width), ("height", height), ("packfactor", packfactor)))
+    if w <= 0 or h <= 0 or pf <= 0:
+        raise GLValueError(f"{describe('unpackrect', args)}: sizes must be positive")
+    cw, ch = -(-w // pf), -(-h // pf)
+    if not isinstance(data, (bytes, bytearray, memoryview)) or len(data) != cw * ch:
+        raise GLValueError(f"{describe('unpackrect', args)}: data must be exactly "
+                           f"{cw * ch} bytes (one per {pf}x{pf} block)")
+    small = np.frombuffer(bytes(data), np.uint8).reshape(ch, cw).astype("<u4") * 0x010101
+    big = np.repeat(np.repeat(small, pf, axis=0), pf, axis=1)[:h, :w]
+    return np.ascontiguousarray(big, dtype="<u4").tobytes()
+
+
+_PLANES = ("color", "packed", "z", "stencil", "accum")
+
+
+def read_pixels(buffer: str = "front", plane: str = "color") -> np.ndarray:
+    """A copy of one plane of the current window as a numpy array, row 0 = bottom.
+
+    Not an IRIS GL call: the library users' way to get images and buffers out.
+
+    Parameters
+    ----------
+    buffer : {'front', 'back', 'display'}
+        Which colour buffer ('back' needs a double-buffered window); 'display' is
+        the front buffer as the monitor shows it (colour-mapped in cmode).  Ignored
+        for the z, stencil and accumulation planes.
+    plane : {'color', 'packed', 'z', 'stencil', 'accum'}
+        'color': (H, W, 4) uint8 RGBA; 'packed': (H, W) uint32 0xAABBGGRR words
+        (colour indices in cmode); 'z': (H, W) int32; 'stencil': (H, W) uint8;
+        'accum': (H, W, 4) int16.
+
+    Returns
+    -------
+    numpy.ndarray
+
+    Raises
+    ------
+    GLUsageError
+        Before winopen, or for a plane the window was not configured with.
+    GLValueError
+        For an unknown buffer or plane name.
+    """
+    args = (buffer, plane)
+    if buffer not in ("front", "back", "display"):
+        raise GLValueError(f"{describe('read_pixels', args)}: buffer must be 'front', "
+                           "'back' or 'display'")
+    if plane not in _PLANES:
+        raise GLValueError(f"{describe('read_pixels', args)}: plane must be one of "
+                           f"{', '.join(_PLANES)}")
+    ctx = current("read_pixels", args)
+    ctx.flush()
+    if plane in ("z", "stencil", "accum"):
+        arr = {"z": ctx.fb.z, "stencil": ctx.fb.stencil, "accum": ctx.fb.accum}[plane]
+        if arr is None:
+            raise GLUsageError(f"{describe('read_pixels', args)}: the window has no {plane} "
+                               "planes (configure them with zbsize/stensize/acsize + gconfig)")
+        return arr.copy()
+    if buffer == "display":
+        img = ctx.display_rgba()
+        if plane == "packed":
+            return np.ascontiguousarray(img).view("<u4").reshape(img.shape[:2]).astype(
+                np.uint32)
+        return img
+    if buffer == "back" and ctx.fb.back is None:
+        raise GLUsageError(f"{describe('read_pixels', args)}: the window is single-buffered "
+                           "(doublebuffer() + gconfig() gives it a back buffer)")
+    if plane == "packed":
+        return ctx.colour_buffer(buffer).copy()
+    return ctx.read_rgba(buffer)

@@ -1,0 +1,158 @@
+"""The ``vgxsim`` command.
+
+::
+
+    vgxsim --version
+    vgxsim run PROGRAM.py [--events FILE] [--frames DIR|FILE.gif|FILE.mp4] [--size WxH]
+                          [--max-frames N] [--fps F] [-- PROGRAM ARGS...]
+    vgxsim render [--out PATH] [--size WxH] [--mode objects|volumes|shadows]
+                  [--edges all|silhouette]
+
+``run`` executes an IRIS GL Python program headless (see :mod:`vgxsim.runner`);
+everything after ``--`` is passed to the program.  ``render`` draws Heidmann's 1991
+scene with :mod:`vgxsim.examples.heidmann1991` and writes one PNG.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+import vgxsim
+
+__all__ = ["main", "build_parser"]
+
+
+def _size(text: str) -> tuple[int, int]:
+    from vgxsim.runner import parse_size
+
+    try:
+        return parse_size(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _positive_int(text: str) -> int:
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
+    if n <= 0:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    return n
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``vgxsim`` command."""
+    p = argparse.ArgumentParser(
+        prog="vgxsim",
+        description="Software emulation of the SGI IRIS GL / Power Series VGX pipeline.")
+    p.add_argument("--version", action="version", version=f"vgxsim {vgxsim.__version__}")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+
+    run = sub.add_parser(
+        "run", help="run an IRIS GL Python program headless",
+        description="Run an IRIS GL Python program headless: `import gl, GL, DEVICE` "
+                    "resolve to vgxsim for the run; arguments after `--` go to the program.")
+    run.add_argument("program", help="the program file (PROGRAM.py)")
+    run.add_argument("--events", metavar="FILE", help="event script standing in for the user")
+    run.add_argument("--frames", metavar="DIR_OR_FILE",
+                     help="where frames go: a directory (PNG files), a .gif or a .mp4")
+    run.add_argument("--size", type=_size, metavar="WxH",
+                     help="size of windows opened without prefsize (default 640x512)")
+    run.add_argument("--max-frames", type=_positive_int, metavar="N",
+                     help="end the run after N frames")
+    run.add_argument("--fps", type=float, default=30.0, help="video frame rate (default 30)")
+
+    render = sub.add_parser(
+        "render", help="render Heidmann's 1991 shadow scene to a PNG",
+        description="Render the scene of Heidmann's 1991 `shadows` program to one PNG.")
+    render.add_argument("--out", default="heidmann1991.png", metavar="PATH",
+                        help="output PNG (default heidmann1991.png)")
+    render.add_argument("--size", type=_size, default=(640, 512), metavar="WxH",
+                        help="image size (default 640x512)")
+    render.add_argument("--mode", choices=("objects", "volumes", "shadows"),
+                        default="shadows", help="display mode (default shadows)")
+    render.add_argument("--edges", choices=("all", "silhouette"), default="silhouette",
+                        help="shadow-volume edges (default silhouette)")
+    return p
+
+
+def _run(ns: argparse.Namespace, program_args: list[str]) -> int:
+    from vgxsim.events import ScriptError
+    from vgxsim.runner import run_program
+    from vgxsim.sinks import SinkError
+
+    if not os.path.isfile(ns.program):
+        print(f"vgxsim run: no such program file: {ns.program}", file=sys.stderr)
+        return 2
+    if ns.events is not None and not os.path.isfile(ns.events):
+        print(f"vgxsim run: no such event script: {ns.events}", file=sys.stderr)
+        return 2
+    try:
+        return run_program(ns.program, program_args, events=ns.events, frames=ns.frames,
+                           size=ns.size, max_frames=ns.max_frames, fps=ns.fps)
+    except ScriptError as exc:
+        print(f"vgxsim run: bad event script: {exc}", file=sys.stderr)
+        return 2
+    except (SinkError, ImportError, ValueError) as exc:
+        print(f"vgxsim run: cannot record frames: {exc}", file=sys.stderr)
+        return 2
+
+
+def _render(ns: argparse.Namespace) -> int:
+    from vgxsim.sinks import SinkError, write_png
+
+    try:
+        from vgxsim.examples import heidmann1991
+    except ModuleNotFoundError as exc:
+        if exc.name not in ("vgxsim.examples.heidmann1991", "vgxsim.examples"):
+            raise
+        print("vgxsim render: the example module vgxsim.examples.heidmann1991 is not "
+              "available in this installation, so there is nothing to render",
+              file=sys.stderr)
+        return 1
+    w, h = ns.size
+    image = heidmann1991.render(w, h, ns.mode, ns.edges)
+    try:
+        write_png(ns.out, image)
+    except SinkError as exc:
+        print(f"vgxsim render: {exc}", file=sys.stderr)
+        return 1
+    print(f"wrote {ns.out} ({w}x{h}, mode {ns.mode}, edges {ns.edges})")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``vgxsim`` console script.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Arguments without the program name (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status.
+    """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    program_args: list[str] = []
+    if "--" in argv:  # everything after the first "--" belongs to the program
+        i = argv.index("--")
+        argv, program_args = argv[:i], argv[i + 1:]
+    parser = build_parser()
+    ns = parser.parse_args(argv)
+    if ns.command == "run":
+        return _run(ns, program_args)
+    if ns.command == "render":
+        if program_args:
+            parser.error("render takes no arguments after --")
+        return _render(ns)
+    parser.print_help(sys.stderr)
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
