@@ -1,0 +1,1 @@
+"""vgxsim.examples."""
