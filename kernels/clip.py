@@ -76,13 +76,14 @@ def outcodes(v, gx, gy):
 
 
 @inline
-def _lex_less(a, b):
-    for k in range(4):
-        if a[k] < b[k]:
-            return True
-        if a[k] > b[k]:
-            return False
-    return False
+def _lex_less(ax, ay, az, aw, bx, by, bz, bw):
+    if ax != bx:
+        return ax < bx
+    if ay != by:
+        return ay < by
+    if az != bz:
+        return az < bz
+    return aw < bw
 
 
 @jit
@@ -124,8 +125,11 @@ def clip_triangles(v, attr, tris, gx, gy):
             nclip += 1
     out_v = np.empty((nv + nclip * MAX_POLY, 4), dtype=np.float64)
     out_attr = np.empty((nv + nclip * MAX_POLY, k), dtype=np.float64)
-    out_v[:nv] = v
-    out_attr[:nv] = attr
+    for i in range(nv):
+        for q in range(4):
+            out_v[i, q] = v[i, q]
+        for q in range(k):
+            out_attr[i, q] = attr[i, q]
     out_tris = np.empty((nt + nclip * (MAX_POLY - 3), 3), dtype=np.int64)
     out_src = np.empty(nt + nclip * (MAX_POLY - 3), dtype=np.int64)
     poly = np.empty((MAX_POLY, 4 + k), dtype=np.float64)
@@ -169,7 +173,8 @@ def clip_triangles(v, attr, tris, gx, gy):
                     m += 1
                 if in1 != in2:
                     # Intersect from the lexicographically smaller endpoint.
-                    if _lex_less(poly[i2], poly[i]):
+                    if _lex_less(poly[i2, 0], poly[i2, 1], poly[i2, 2], poly[i2, 3],
+                                 poly[i, 0], poly[i, 1], poly[i, 2], poly[i, 3]):
                         lo, hi, dlo, dhi = i2, i, d2, d1
                     else:
                         lo, hi, dlo, dhi = i, i2, d1, d2
