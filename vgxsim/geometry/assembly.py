@@ -4,7 +4,8 @@
   triangulated by ear clipping, :func:`triangulate_concave`);
 * tmesh: each new vertex forms a triangle with the two saved vertices and replaces
   the older one; ``swaptmesh()`` exchanges the saved pair so the next triangle pivots
-  on the other one (fans and arbitrary strips);
+  on the other one (fans and arbitrary strips); winding alternates like a strip's,
+  and a swap keeps it consistent (see :func:`tmesh_triangles`);
 * qstrip: quadrilaterals from pairs of vertices (like GL_QUAD_STRIP), two triangles
   each;
 * line / closedline: consecutive segments (closedline adds the closing segment).
@@ -36,6 +37,12 @@ def tmesh_triangles(n: int, swaps: list[int]) -> np.ndarray:
     for v in range(n):
         while si < len(swap_at) and swap_at[si] == v:
             saved[0], saved[1] = saved[1], saved[0]
+            if saved[0] >= 0 and saved[1] >= 0:
+                # The swap changes which saved vertex is replaced next, not the order in
+                # which the pair is emitted: toggling the parity too keeps the shared
+                # edge traversed in opposite directions by consecutive triangles, so a
+                # fan (v0 v1 swaptmesh v2 swaptmesh v3 ...) faces one way throughout.
+                replace_slot ^= 1
             si += 1
         if saved[0] >= 0 and saved[1] >= 0:
             a, b = saved[0], saved[1]

@@ -11,6 +11,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from vgxsim.geometry.transform import apply
 from vgxsim.kernels.clip import clip_segments, clip_triangles, outcodes, project_snap
 from vgxsim.kernels.lines import count_line_fragments, line_fragments, point_fragments
 from vgxsim.state.raster import FLAT, RasterState
@@ -54,7 +55,7 @@ def to_clip(obj: np.ndarray, mvp: np.ndarray) -> np.ndarray:
     obj = np.asarray(obj, dtype=np.float64)
     if obj.shape[1] == 3:
         obj = np.concatenate([obj, np.ones((obj.shape[0], 1))], axis=1)
-    return obj @ mvp
+    return apply(obj, mvp)  # row-independent rounding (transform.apply)
 
 
 def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgba=None,

@@ -14,6 +14,8 @@ import math
 
 import numpy as np
 
+from vgxsim.kernels.transform import transform_points
+
 Matrix = np.ndarray  # shape (4, 4), float64, row-vector convention
 
 
@@ -127,3 +129,30 @@ def polarview(dist: float, azim: float, inc: float, twist: float) -> Matrix:
     m = rotation(-inc / 10.0, "x") @ m
     m = rotation(-azim / 10.0, "z") @ m
     return m
+
+
+def apply(points: np.ndarray, m: Matrix) -> np.ndarray:
+    """Row vectors times a matrix, ``points @ m``, computed the same way for every row.
+
+    BLAS ``matmul`` may round a row differently depending on how many rows are in
+    the call (blocking and FMA paths differ), so the same vertex could land on a
+    different fixed-point position, or get a different z, when it is drawn alone
+    (immediate mode) or inside a large array (a display object, a mesh).  The
+    numeric model needs "two passes over the same triangle give bit-identical z"
+    (docs/numeric_model.md s. 4), so the product is spelled out as elementwise
+    multiply-adds in a fixed order: ``((p0*m0 + p1*m1) + p2*m2) + p3*m3``.
+
+    Parameters
+    ----------
+    points : ndarray, shape (N, K), float64
+    m : ndarray, shape (K, J), float64
+
+    Returns
+    -------
+    ndarray, shape (N, J), float64
+    """
+    p = np.ascontiguousarray(points, dtype=np.float64)
+    m = np.ascontiguousarray(m, dtype=np.float64)
+    if p.shape[0] == 0:
+        return np.zeros((0, m.shape[1]))
+    return transform_points(p, m)

@@ -1,3 +1,390 @@
-"""IRIS GL calls: draw."""
+"""IRIS GL calls: primitives (bgn*/end*) and vertex, normal and texture-coordinate calls.
 
-__all__: list[str] = []
+A primitive is opened with ``bgnpolygon``, ``bgntmesh``, ``bgnqstrip``, ``bgnline``,
+``bgnclosedline`` or ``bgnpoint`` and closed with the matching ``end*``.  Each vertex
+call (``v2f``, ``v3i``, ``v4d``, ...) records its position together with the colour
+current at that moment, the current normal and whether the vertex is lit -- so a
+colour changed between vertices gives Gouraud shading, and with
+``lmcolor(LMC_COLOR)`` "whichever of colour or normal was sent last" decides whether
+the vertex is lit or coloured (lmcolor(3G); ``Context.last_sent``, which the colour
+calls of :mod:`._color` set to ``'colour'`` and ``n3f`` to ``'normal'``).  At
+``end*`` the vertices become numpy arrays and one ``Context.draw_arrays`` call.
+
+Argument conventions follow CPython's historical ``gl`` binding
+(shared/reference/cpython_gl_module.md 1.4-1.6): ``v3f(x, y, z)`` and
+``v3f((x, y, z))`` both work; the ``s``/``i`` forms take ints only; ``varray``,
+``vnarray`` and ``nvarray`` take lists of point tuples.
+
+Every call here is also described to the display-object compiler
+(:mod:`._objects`) by a ``stream`` attribute: a function from the call's arguments
+to a list of *stream operations* (validated exactly as the call itself validates):
+
+* ``('bgn', prim)`` / ``('end', prim)`` -- prim is 'polygon', 'tmesh', 'qstrip',
+  'line', 'closedline', 'point' or 'pmv' (the old-style pmv/pdr/pclos polygon);
+* ``('v', xyzw)`` a vertex; ``('pv', xyzw)`` a vertex that must be inside pmv (pdr);
+* ``('n', nxyz)`` the current normal; ``('t', st)`` the texture coordinate;
+* ``('swap',)`` swaptmesh; ``('g', xyzw)`` the current graphics position.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from ._core import (
+    GLTypeError,
+    GLUsageError,
+    GLValueError,
+    as_float,
+    as_int,
+    current,
+    describe,
+    flat_numbers,
+    gl_function,
+)
+
+__all__ = [
+    "bgnpolygon", "endpolygon", "bgntmesh", "swaptmesh", "endtmesh", "bgnqstrip",
+    "endqstrip", "bgnline", "endline", "bgnclosedline", "endclosedline", "bgnpoint",
+    "endpoint",
+    "v2s", "v2i", "v2f", "v2d", "v3s", "v3i", "v3f", "v3d", "v4s", "v4i", "v4f", "v4d",
+    "n3f", "normal", "t2s", "t2i", "t2f", "t2d", "concave", "varray", "vnarray", "nvarray",
+]
+
+#: Which Context.draw_arrays kind each open primitive draws as.
+DRAW_KIND = {"polygon": "polygon", "tmesh": "tmesh", "qstrip": "qstrip", "line": "line",
+             "closedline": "closedline", "point": "point", "pmv": "polygon"}
+#: The call that opens each primitive (for error messages).
+OPENER = {"polygon": "bgnpolygon", "tmesh": "bgntmesh", "qstrip": "bgnqstrip",
+          "line": "bgnline", "closedline": "bgnclosedline", "point": "bgnpoint",
+          "pmv": "pmv"}
+CLOSER = {"polygon": "endpolygon", "tmesh": "endtmesh", "qstrip": "endqstrip",
+          "line": "endline", "closedline": "endclosedline", "point": "endpoint",
+          "pmv": "pclos"}
+
+
+# -- argument parsing (shared by immediate mode and the display-object compiler) -----
+def coords(name: str, args: tuple, n: int, integer: bool = False) -> tuple[float, ...]:
+    """``n`` coordinates as floats, from ``f(x, y, z)`` or ``f((x, y, z))``.
+
+    Integer forms (``v3i``, ``v3s``, ...) accept only ints, as the binding's
+    ``PyInt_Check`` did; every value must be finite (a NaN or infinite coordinate has
+    no place on the screen; use w = 0 for points at infinity).
+    """
+    seq = args
+    if len(args) == 1 and type(args[0]) in (tuple, list):
+        seq = args[0]
+    if len(seq) == n:
+        # Fast path for the common call with plain Python numbers.
+        if integer:
+            if all(type(a) is int for a in seq):
+                return tuple(float(a) for a in seq)
+        elif all(type(a) is float or type(a) is int for a in seq):
+            vals = tuple(float(a) for a in seq)
+            if all(math.isfinite(v) for v in vals):
+                return vals
+            _not_finite(name, args)
+    vals = tuple(float(v) for v in flat_numbers(name, args, n, integer=integer))
+    if not all(math.isfinite(v) for v in vals):
+        _not_finite(name, args)
+    return vals
+
+
+def _not_finite(name: str, args: tuple) -> None:
+    raise GLValueError(f"{describe(name, args)}: coordinates must be finite numbers")
+
+
+def _no_args(name: str, args: tuple) -> None:
+    """Calls without parameters.  The historical binding never looked at the
+    arguments of such stubs (``bgnpolygon(1)`` worked); here they are ignored too."""
+
+
+def _xyzw(vals: tuple[float, ...]) -> tuple[float, float, float, float]:
+    if len(vals) == 2:
+        return (vals[0], vals[1], 0.0, 1.0)
+    if len(vals) == 3:
+        return (vals[0], vals[1], vals[2], 1.0)
+    return vals  # type: ignore[return-value]
+
+
+# -- applying stream operations to a context ------------------------------------------
+def begin(ctx, name: str, args: tuple, prim: str) -> None:
+    """Open a primitive; GLUsageError if one is already open."""
+    if ctx.prim is not None:
+        raise GLUsageError(f"{describe(name, args)}: {OPENER[ctx.prim]}() is still open "
+                           f"(call {CLOSER[ctx.prim]}() first)")
+    ctx.prim = prim
+    ctx.prim_verts = []
+    ctx.prim_swaps = []
+
+
+def vertex(ctx, name: str, args: tuple, xyzw, need: str | None = None) -> None:
+    """Record one vertex with the current colour and normal (per-vertex Gouraud)."""
+    prim = ctx.prim
+    if prim is None or (need is not None and prim != need):
+        where = "outside bgn*/end*" if prim is None else f"inside {OPENER[prim]}()"
+        hint = f"call {OPENER[need]}() first" if need else "call bgnpolygon(), bgnline(), ... first"
+        raise GLUsageError(f"{describe(name, args)}: vertex {where} ({hint})")
+    ctx.prim_verts.append((xyzw, ctx.colour, ctx.normal, ctx.last_sent == "normal"))
+
+
+def end(ctx, name: str, args: tuple, prim: str) -> None:
+    """Close the open primitive and draw it with one ``draw_arrays`` call."""
+    if ctx.prim != prim:
+        state = "no primitive is open" if ctx.prim is None else f"{OPENER[ctx.prim]}() is open"
+        raise GLUsageError(f"{describe(name, args)}: without {OPENER[prim]}() ({state})")
+    verts, swaps = ctx.prim_verts, ctx.prim_swaps
+    ctx.prim, ctx.prim_verts, ctx.prim_swaps = None, [], []
+    if verts:
+        draw_vertices(ctx, DRAW_KIND[prim], verts, swaps)
+
+
+def vertex_arrays(verts: Sequence) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(obj (N, 4), colours (N, 4), normals (N, 3), normal_sent_last (N,)) of recorded
+    vertices."""
+    pos, cols, nrms, sent = zip(*verts, strict=True)
+    return (np.array(pos, dtype=np.float64), np.array(cols, dtype=np.float64),
+            np.array(nrms, dtype=np.float64), np.array(sent, dtype=bool))
+
+
+def lit_mask(ctx, normal_sent: np.ndarray) -> np.ndarray:
+    """Which vertices are lit: with LMC_COLOR those whose normal was sent after the
+    last colour; in every other lmcolor mode colour calls change the material (or are
+    ignored, LMC_NULL), so every vertex is lit (lmcolor(3G))."""
+    if ctx.lmcolor_mode != 0:
+        return np.ones(normal_sent.shape[0], dtype=bool)
+    return normal_sent
+
+
+def draw_vertices(ctx, kind: str, verts: Sequence, swaps: Sequence[int] = ()) -> None:
+    """Draw recorded vertices as one primitive of ``kind`` (draw_arrays kinds)."""
+    obj, cols, nrms, sent = vertex_arrays(verts)
+    ctx.draw_arrays(kind, obj, cols, nrms, lit_mask(ctx, sent), swaps=list(swaps))
+
+
+def apply_ops(ctx, name: str, args: tuple, ops) -> None:
+    """Execute stream operations (see the module docstring) on ``ctx``."""
+    for op in ops:
+        tag = op[0]
+        if tag == "v":
+            vertex(ctx, name, args, op[1])
+        elif tag == "pv":
+            vertex(ctx, name, args, op[1], need="pmv")
+        elif tag == "n":
+            ctx.normal = op[1]
+            ctx.last_sent = "normal"
+        elif tag == "t":
+            ctx.texcoord = op[1]
+        elif tag == "g":
+            ctx.gpos = op[1]
+        elif tag == "bgn":
+            begin(ctx, name, args, op[1])
+        elif tag == "end":
+            end(ctx, name, args, op[1])
+        elif tag == "swap":
+            if ctx.prim != "tmesh":
+                raise GLUsageError(f"{describe(name, args)}: swaptmesh outside "
+                                   f"bgntmesh()/endtmesh()")
+            ctx.prim_swaps.append(len(ctx.prim_verts))
+        else:  # pragma: no cover - programming error
+            raise AssertionError(tag)
+
+
+def stream_call(name: str, parse: Callable[[tuple], list], doc: str):
+    """Build a recordable gl call from its stream parser: the call validates its
+    arguments with ``parse`` and applies the operations to the current window."""
+
+    def call(*args):
+        ops = parse(args)
+        apply_ops(current(name, args), name, args, ops)
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = doc
+    wrapped = gl_function(record=True)(call)
+    wrapped.stream = parse
+    return wrapped
+
+
+# -- primitives ------------------------------------------------------------------------
+def _bgn(prim: str):
+    name = OPENER[prim]
+
+    def parse(args: tuple) -> list:
+        _no_args(name, args)
+        return [("bgn", prim)]
+
+    return stream_call(name, parse, f"{name}(): open a {prim} primitive ({name}(3G)).")
+
+
+def _end(prim: str):
+    name = CLOSER[prim]
+
+    def parse(args: tuple) -> list:
+        _no_args(name, args)
+        return [("end", prim)]
+
+    return stream_call(name, parse, f"{name}(): close the {prim} and draw it; "
+                                    f"GLUsageError without {OPENER[prim]}().")
+
+
+bgnpolygon, endpolygon = _bgn("polygon"), _end("polygon")
+bgntmesh, endtmesh = _bgn("tmesh"), _end("tmesh")
+bgnqstrip, endqstrip = _bgn("qstrip"), _end("qstrip")
+bgnline, endline = _bgn("line"), _end("line")
+bgnclosedline, endclosedline = _bgn("closedline"), _end("closedline")
+bgnpoint, endpoint = _bgn("point"), _end("point")
+
+bgnpolygon.__doc__ += (" Polygons must be convex unless concave(TRUE); they are fanned "
+                       "from the first vertex; shademodel(FLAT) uses the last vertex's "
+                       "colour.")
+bgntmesh.__doc__ += (" Each vertex after the second forms a triangle with the two saved "
+                     "vertices and replaces the older; swaptmesh() exchanges them.")
+
+
+def _swap_parse(args: tuple) -> list:
+    _no_args("swaptmesh", args)
+    return [("swap",)]
+
+
+swaptmesh = stream_call(
+    "swaptmesh", _swap_parse,
+    "swaptmesh(): exchange the two saved tmesh vertices, so the next triangle pivots "
+    "on the other one (fans: swaptmesh before every vertex after the third).")
+
+
+# -- vertices ----------------------------------------------------------------------------
+def _vertex_call(n: int, suffix: str):
+    name = f"v{n}{suffix}"
+    integer = suffix in ("s", "i")
+
+    def parse(args: tuple) -> list:
+        return [("v", _xyzw(coords(name, args, n, integer)))]
+
+    def call(*args):
+        # Inlined hot path of parse + apply_ops (one vertex per call).
+        vertex(current(name, args), name, args, _xyzw(coords(name, args, n, integer)))
+
+    kind = "ints" if integer else "numbers"
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = (f"{name}(...): a vertex from {n} {kind}, as {name}(x, ...) or "
+                    f"{name}((x, ...)); only between bgn* and end* (v(3G)).")
+    wrapped = gl_function(record=True)(call)
+    wrapped.stream = parse
+    return wrapped
+
+
+v2s, v2i, v2f, v2d = (_vertex_call(2, s) for s in "sifd")
+v3s, v3i, v3f, v3d = (_vertex_call(3, s) for s in "sifd")
+v4s, v4i, v4f, v4d = (_vertex_call(4, s) for s in "sifd")
+
+
+def _normal_parse(name: str):
+    def parse(args: tuple) -> list:
+        return [("n", coords(name, args, 3))]
+
+    return parse
+
+
+n3f = stream_call("n3f", _normal_parse("n3f"),
+                  "n3f((nx, ny, nz)) or n3f(nx, ny, nz): the current normal; with "
+                  "lmcolor(LMC_COLOR) the following vertices are lit (n3f(3G)).")
+normal = stream_call("normal", _normal_parse("normal"),
+                     "normal((nx, ny, nz)): the obsolete form of n3f.")
+
+
+def _tex_call(suffix: str):
+    name = f"t2{suffix}"
+    integer = suffix in ("s", "i")
+
+    def parse(args: tuple) -> list:
+        return [("t", coords(name, args, 2, integer))]
+
+    return stream_call(name, parse, f"{name}((s, t)): the current texture coordinate "
+                                    f"(t2(3G)); stored in Context.texcoord.")
+
+
+t2s, t2i, t2f, t2d = (_tex_call(s) for s in "sifd")
+
+
+@gl_function(record=True)
+def concave(*args) -> None:
+    """concave(b): TRUE lets bgnpolygon/endpolygon (and polf) draw concave polygons,
+    triangulated in window space by ear clipping; FALSE (the default) fans them."""
+    if len(args) != 1:
+        raise GLTypeError(f"{describe('concave', args)}: expected 1 argument, got "
+                          f"{len(args)}")
+    b = as_int("concave", args, "b", args[0])
+    current("concave", args).concave = bool(b)
+
+
+# -- hand-written array helpers of the historical binding --------------------------
+def _seq(name: str, args: tuple, what: str):
+    if len(args) != 1:
+        raise GLTypeError(f"{describe(name, args)}: expected 1 argument ({what}), got "
+                          f"{len(args)}")
+    seq = args[0]
+    if isinstance(seq, np.ndarray):
+        seq = seq.tolist()
+    if not isinstance(seq, (list, tuple)):
+        raise GLTypeError(f"{describe(name, args)}: {what} must be a list or tuple, not "
+                          f"{type(seq).__name__}")
+    return seq
+
+
+def _point(name: str, args: tuple, p, width: int | None) -> tuple[float, ...]:
+    if not isinstance(p, (list, tuple)):
+        raise GLTypeError(f"{describe(name, args)}: each point must be a list or tuple, "
+                          f"not {type(p).__name__}")
+    if width is not None and len(p) != width:
+        raise GLTypeError(f"{describe(name, args)}: points must all have {width} "
+                          f"coordinates (the first point's), got {len(p)}")
+    if len(p) not in (2, 3):
+        raise GLTypeError(f"{describe(name, args)}: points have 2 or 3 coordinates, got "
+                          f"{len(p)}")
+    vals = tuple(as_float(name, args, "coordinate", v) for v in p)
+    if not all(math.isfinite(v) for v in vals):
+        _not_finite(name, args)
+    return vals
+
+
+def _varray_parse(args: tuple) -> list:
+    pts = _seq("varray", args, "points")
+    if not pts:
+        return []
+    width = len(pts[0]) if isinstance(pts[0], (list, tuple)) else None
+    return [("v", _xyzw(_point("varray", args, p, width))) for p in pts]
+
+
+varray = stream_call(
+    "varray", _varray_parse,
+    "varray(points): send each point of a list of 2- or 3-tuples as a vertex (v3d, "
+    "z = 0 for 2-D); all points as wide as the first (the binding's hand-written helper).")
+
+
+def _pairs_parse(name: str, normal_first: bool):
+    def parse(args: tuple) -> list:
+        ops = []
+        order = "(normal, vertex)" if normal_first else "(vertex, normal)"
+        for pair in _seq(name, args, "pairs"):
+            if not isinstance(pair, tuple) or len(pair) != 2:
+                raise GLTypeError(f"{describe(name, args)}: each element must be a "
+                                  f"2-tuple {order}")
+            nrm, vtx = (pair[0], pair[1]) if normal_first else (pair[1], pair[0])
+            n3 = _point(name, args, nrm, 3)
+            ops.append(("n", n3))
+            ops.append(("v", _xyzw(_point(name, args, vtx, 3))))
+        return ops
+
+    return parse
+
+
+nvarray = stream_call(
+    "nvarray", _pairs_parse("nvarray", True),
+    "nvarray(pairs): for each 2-tuple (normal, vertex) call n3f(normal) then "
+    "v3f(vertex).")
+vnarray = stream_call(
+    "vnarray", _pairs_parse("vnarray", False),
+    "vnarray(pairs): for each 2-tuple (vertex, normal) call n3f(normal) then "
+    "v3f(vertex).")

@@ -1,3 +1,287 @@
-"""IRIS GL calls: matrix."""
+"""IRIS GL calls: matrix modes, viewing and modelling transforms, the matrix stack.
 
-__all__: list[str] = []
+IRIS GL transforms points as row vectors, ``p' = p @ M``; modelling and viewing
+calls (rotate, translate, scale, lookat, polarview, multmatrix) *premultiply* the
+current matrix, ``current = T @ current`` (multmatrix(3G); MS "Porting Matrix and
+Transformation Functions").  Projection calls (perspective, window, ortho, ortho2)
+*load*: in MSINGLE they replace the single matrix, otherwise the projection matrix
+(mmode(3G); irisgl_reference 1.7).  The matrix arithmetic lives in
+:mod:`vgxsim.geometry.transform` and the stacks in :mod:`vgxsim.state.matrices`; this
+module validates arguments the way CPython's ``gl`` binding did (Angles are ints in
+tenths of a degree, Coord and float arguments take ints or floats, matrices are 16
+flat numbers) and raises a :class:`GLError` naming the call.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vgxsim.geometry import transform as T
+from vgxsim.state.matrices import STACK_DEPTH, MatrixStackError
+
+from ._core import (
+    GLTypeError,
+    GLUsageError,
+    GLValueError,
+    as_angle,
+    as_axis,
+    as_float,
+    check_token,
+    current,
+    describe,
+    flat_numbers,
+    gl_function,
+)
+
+__all__ = [
+    "mmode", "getmmode", "perspective", "window", "ortho", "ortho2", "lookat",
+    "polarview", "rotate", "rot", "translate", "scale", "pushmatrix", "popmatrix",
+    "loadmatrix", "multmatrix", "getmatrix",
+]
+
+_MMODES = (0, 1, 2, 3)  # MSINGLE, MPROJECTION, MVIEWING, MTEXTURE (gl.h)
+
+
+def _floats(name: str, args: tuple, what: tuple[str, ...], values: tuple | None = None
+            ) -> list[float]:
+    """Scalar Coord/float arguments: ``values`` (default ``args``), exactly
+    ``len(what)`` of them; errors quote the whole call ``args``."""
+    values = args if values is None else values
+    if len(values) != len(what):
+        raise GLTypeError(f"{describe(name, args)}: expected {len(what)} arguments "
+                          f"({', '.join(what)}), got {len(args)}")
+    return [as_float(name, args, w, v) for w, v in zip(what, values, strict=True)]
+
+
+def _nargs(name: str, args: tuple, n: int) -> None:
+    if len(args) != n:
+        raise GLTypeError(f"{describe(name, args)}: expected {n} arguments, got {len(args)}")
+
+
+def _matrix_arg(name: str, args: tuple) -> np.ndarray:
+    """A Matrix: 16 numbers as one flat sequence or 16 arguments (the binding's
+    ``float[16]``), or, as a convenience for library users, a (4, 4) numpy array.
+    A nested 4x4 Python list is rejected as the binding rejected it."""
+    if len(args) == 1 and isinstance(args[0], np.ndarray):
+        a = args[0]
+        if a.shape not in ((16,), (4, 4)):
+            raise GLTypeError(f"{describe(name, args)}: a Matrix array must have shape "
+                              f"(16,) or (4, 4), not {a.shape}")
+        if not np.issubdtype(a.dtype, np.number) or np.issubdtype(a.dtype, np.complexfloating):
+            raise GLTypeError(f"{describe(name, args)}: a Matrix array must be real numbers")
+        return np.asarray(a, dtype=np.float64).reshape(4, 4).copy()
+    if len(args) == 1 and isinstance(args[0], (list, tuple)) and args[0] and isinstance(
+            args[0][0], (list, tuple, np.ndarray)):
+        raise GLTypeError(f"{describe(name, args)}: a Matrix is 16 numbers in one flat "
+                          f"sequence (row-major, as getmatrix() returns), not nested rows")
+    return np.array(flat_numbers(name, args, 16), dtype=np.float64).reshape(4, 4)
+
+
+def _finite(name: str, args: tuple, values) -> None:
+    if not np.all(np.isfinite(np.asarray(values, dtype=np.float64))):
+        raise GLValueError(f"{describe(name, args)}: arguments must be finite")
+
+
+@gl_function(record=True)
+def mmode(*args) -> None:
+    """mmode(m): select MSINGLE, MPROJECTION, MVIEWING or MTEXTURE (mmode(3G)).
+
+    Entering MVIEWING from MSINGLE makes the single matrix the projection and the
+    modelview the identity (see :meth:`MatrixState.set_mode`).
+    """
+    _nargs("mmode", args, 1)
+    m = check_token("mmode", args, "mode", args[0], _MMODES, "M")
+    current("mmode", args).matrices.set_mode(m)
+
+
+@gl_function(record=False)
+def getmmode(*args) -> int:
+    """getmmode() -> int: the current matrix mode."""
+    return int(current("getmmode", args).matrices.mode)
+
+
+@gl_function(record=True)
+def perspective(*args) -> None:
+    """perspective(fovy, aspect, near, far): load a perspective projection.
+
+    ``fovy`` is an Angle (int, tenths of a degree); perspective(3G) calls values
+    below 2 (0.2 degrees) invalid.  ``near == far`` and ``aspect == 0`` would divide
+    by zero and are rejected too.
+    """
+    name = "perspective"
+    _nargs(name, args, 4)
+    fovy = as_angle(name, args, args[0])
+    aspect, near, far = _floats(name, args, ("aspect", "near", "far"), args[1:])
+    _finite(name, args, (aspect, near, far))
+    if fovy < 2 or fovy >= 1800:
+        raise GLValueError(f"{describe(name, args)}: fovy must be 2..1799 tenths of a "
+                           f"degree (perspective(3G))")
+    if aspect == 0.0:
+        raise GLValueError(f"{describe(name, args)}: aspect must not be 0")
+    if near == far:
+        raise GLValueError(f"{describe(name, args)}: near and far must differ")
+    ctx = current(name, args)
+    ctx.matrices.load_projection(T.perspective(fovy, aspect, near, far))
+
+
+@gl_function(record=True)
+def window(*args) -> None:
+    """window(left, right, bottom, top, near, far): load a perspective frustum
+    (window(3G); the IRIS form of glFrustum, loaded, not multiplied)."""
+    name = "window"
+    v = _floats(name, args, ("left", "right", "bottom", "top", "near", "far"))
+    _finite(name, args, v)
+    _check_ranges(name, args, v)
+    current(name, args).matrices.load_projection(T.frustum(*v))
+
+
+@gl_function(record=True)
+def ortho(*args) -> None:
+    """ortho(left, right, bottom, top, near, far): load a parallel projection."""
+    name = "ortho"
+    v = _floats(name, args, ("left", "right", "bottom", "top", "near", "far"))
+    _finite(name, args, v)
+    _check_ranges(name, args, v)
+    current(name, args).matrices.load_projection(T.orthographic(*v))
+
+
+@gl_function(record=True)
+def ortho2(*args) -> None:
+    """ortho2(left, right, bottom, top): 2-D parallel projection, z in [-1, 1].
+
+    With ``viewport(l, r, b, t)``, ``ortho2(l - 0.5, r + 0.5, b - 0.5, t + 0.5)`` is
+    "the standard 2-D projection" of subpixel(3G): integer coordinates fall on pixel
+    centres.
+    """
+    name = "ortho2"
+    v = _floats(name, args, ("left", "right", "bottom", "top"))
+    _finite(name, args, v)
+    _check_ranges(name, args, v + [-1.0, 1.0])
+    current(name, args).matrices.load_projection(T.orthographic(*v, -1.0, 1.0))
+
+
+def _check_ranges(name: str, args: tuple, v) -> None:
+    l, r, b, t, n, f = v
+    if l == r or b == t or n == f:
+        raise GLValueError(f"{describe(name, args)}: left/right, bottom/top and near/far "
+                           f"must each differ (the projection would divide by zero)")
+
+
+@gl_function(record=True)
+def lookat(*args) -> None:
+    """lookat(vx, vy, vz, px, py, pz, twist): view from (vx, vy, vz) toward
+    (px, py, pz); ``twist`` is an Angle about the line of sight (lookat(3G)).
+    Premultiplies the current matrix."""
+    name = "lookat"
+    _nargs(name, args, 7)
+    v = _floats(name, args, ("vx", "vy", "vz", "px", "py", "pz"), args[:6])
+    twist = as_angle(name, args, args[6])
+    _finite(name, args, v)
+    if v[:3] == v[3:]:
+        raise GLValueError(f"{describe(name, args)}: viewpoint and reference point "
+                           f"coincide")
+    current(name, args).matrices.mult(T.lookat(*v, twist))
+
+
+@gl_function(record=True)
+def polarview(*args) -> None:
+    """polarview(dist, azim, inc, twist): dist a Coord, the three angles Angles
+    (tenths of a degree); the same as translate(0, 0, -dist); rotate(-twist, 'z');
+    rotate(-inc, 'x'); rotate(-azim, 'z') (polarview(3G))."""
+    name = "polarview"
+    _nargs(name, args, 4)
+    dist = as_float(name, args, "dist", args[0])
+    _finite(name, args, (dist,))
+    azim, inc, twist = (as_angle(name, args, a) for a in args[1:])
+    current(name, args).matrices.mult(T.polarview(dist, azim, inc, twist))
+
+
+@gl_function(record=True)
+def rotate(*args) -> None:
+    """rotate(a, axis): rotate by the Angle ``a`` (int tenths of a degree) about
+    'x', 'y' or 'z' (either case); counter-clockwise looking down the axis toward the
+    origin (rotate(3G)).  A float angle is a GLTypeError: use rot()."""
+    name = "rotate"
+    _nargs(name, args, 2)
+    a = as_angle(name, args, args[0])
+    axis = as_axis(name, args, args[1])
+    current(name, args).matrices.mult(T.rotation(a / 10.0, axis))
+
+
+@gl_function(record=True)
+def rot(*args) -> None:
+    """rot(a, axis): rotate by ``a`` degrees (a float) about 'x', 'y' or 'z'."""
+    name = "rot"
+    _nargs(name, args, 2)
+    a = as_float(name, args, "angle", args[0])
+    _finite(name, args, (a,))
+    axis = as_axis(name, args, args[1])
+    current(name, args).matrices.mult(T.rotation(a, axis))
+
+
+@gl_function(record=True)
+def translate(*args) -> None:
+    """translate(x, y, z): premultiply a translation."""
+    name = "translate"
+    v = _floats(name, args, ("x", "y", "z"))
+    _finite(name, args, v)
+    current(name, args).matrices.mult(T.translation(*v))
+
+
+@gl_function(record=True)
+def scale(*args) -> None:
+    """scale(x, y, z): premultiply a scaling (negative factors mirror)."""
+    name = "scale"
+    v = _floats(name, args, ("x", "y", "z"))
+    _finite(name, args, v)
+    current(name, args).matrices.mult(T.scaling(*v))
+
+
+@gl_function(record=True)
+def pushmatrix(*args) -> None:
+    """pushmatrix(): duplicate the top of the matrix stack (MATRIXSTACKDEPTH 32).
+
+    In MPROJECTION and MTEXTURE there is no stack (mmode(3G)); the call does nothing.
+    """
+    ctx = current("pushmatrix", args)
+    try:
+        ctx.matrices.push()
+    except MatrixStackError:
+        raise GLUsageError(f"{describe('pushmatrix', args)}: matrix stack overflow "
+                           f"(MATRIXSTACKDEPTH is {STACK_DEPTH})") from None
+
+
+@gl_function(record=True)
+def popmatrix(*args) -> None:
+    """popmatrix(): discard the top of the matrix stack."""
+    ctx = current("popmatrix", args)
+    try:
+        ctx.matrices.pop()
+    except MatrixStackError:
+        raise GLUsageError(f"{describe('popmatrix', args)}: matrix stack underflow "
+                           f"(popmatrix without a matching pushmatrix)") from None
+
+
+@gl_function(record=True)
+def loadmatrix(*args) -> None:
+    """loadmatrix(m): replace the current matrix with ``m`` (16 numbers, row-major,
+    translation in m[12:15]; also accepted: 16 separate arguments or a (4, 4) array)."""
+    m = _matrix_arg("loadmatrix", args)
+    _finite("loadmatrix", args, m)
+    current("loadmatrix", args).matrices.load(m)
+
+
+@gl_function(record=True)
+def multmatrix(*args) -> None:
+    """multmatrix(m): current := m @ current (IRIS premultiplies)."""
+    m = _matrix_arg("multmatrix", args)
+    _finite("multmatrix", args, m)
+    current("multmatrix", args).matrices.mult(m)
+
+
+@gl_function(record=False)
+def getmatrix(*args) -> list[float]:
+    """getmatrix() -> list of 16 floats, row-major (``m[i][j]`` at ``4*i + j``), the
+    form the historical binding returned; it round-trips with loadmatrix."""
+    m = current("getmatrix", args).matrices.get()
+    return [float(x) for x in m.reshape(-1)]

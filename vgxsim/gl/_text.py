@@ -1,3 +1,204 @@
-"""IRIS GL calls: text."""
+"""IRIS GL calls: raster text -- cmov, charstr, strwidth, font and its metrics.
 
-__all__: list[str] = []
+``cmov(x, y, z)`` transforms a point through the current matrix and viewport to
+window coordinates; the result, snapped to the nearest pixel (ties upward, as
+vertices snap with subpixel off, docs/numeric_model.md s. 2), is the current
+character position ``Context.cpos`` (ints, row 0 at the bottom) with its depth
+``Context.cpos_z``.  "If the transformed point is outside the viewport, the character
+position is undefined" (cmov(3G)): here it is marked invalid
+(``Context.cpos_valid``) and ``charstr`` draws nothing until the next ``cmov``.
+cmov "does not affect the current graphics position".
+
+``charstr(s)`` draws the string with the built-in bitmap font (:mod:`vgxsim.font`,
+font 0: 8x13 cells, baseline 3 rows above the bottom) in the current colour, the
+first character's baseline starting at the character position, which then advances
+by each character's width (charstr(3G)).  Glyphs are bitmaps: the matrix does not
+scale or rotate them.
+
+**Choice**: each lit glyph pixel is queued as a *fragment* with the current raster
+state (``CommandBatch.add_fragments``), exactly like the pixels of a point or a line,
+so the raster rectangle, alpha test, stencil test, z test (at ``cpos_z``), blending,
+logicop and write masks all apply -- the AIX GL reference says "strings drawn by the
+charstr subroutine are subject to clipping and z-buffering" and are "fine clipped" to
+the screen mask.  Text is never lit.  Characters the font does not define (outside
+32..126) are ignored and have zero width ("the system ignores characters that are not
+defined in the current raster font", charstr(3G)), so ``strwidth`` agrees with what
+``charstr`` advances.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from vgxsim import font as _font
+from vgxsim.geometry.transform import apply
+
+from ._core import (
+    GLTypeError,
+    GLValueError,
+    as_int,
+    current,
+    describe,
+    gl_function,
+)
+from ._draw import coords
+
+__all__ = [
+    "cmov", "cmovi", "cmovs", "cmov2", "cmov2i", "cmov2s", "charstr", "strwidth",
+    "getheight", "getdescender", "font", "getfont", "getcpos",
+]
+
+FONT = _font.DEFAULT_FONT
+
+
+def _defined(s: str) -> str:
+    """The characters of ``s`` that font 0 defines (others are ignored)."""
+    return "".join(ch for ch in s if FONT.has_glyph(ch))
+
+
+def character_position(ctx, xyzw) -> tuple[bool, int, int, int]:
+    """Window position of an object-space point: (valid, x, y, z).
+
+    Parameters
+    ----------
+    ctx : Context
+    xyzw : sequence of 4 float
+        Object coordinates.
+
+    Returns
+    -------
+    tuple
+        Whether the point is inside the view volume (cmov(3G): otherwise the
+        character position is undefined), the snapped pixel x and y, and the depth
+        as a z-buffer value (lsetdepth range).
+    """
+    view = ctx.viewing()
+    clip = apply(np.asarray([xyzw], dtype=np.float64), view.mvp)[0]
+    x, y, z, w = (float(c) for c in clip)
+    inside = w > 0 and all(-w <= c <= w for c in (x, y, z))
+    if not inside:
+        return False, 0, 0, 0
+    l, r, b, t = view.viewport
+    xw = (l - 0.5) + (x / w + 1.0) * (r - l + 1) / 2.0
+    yw = (b - 0.5) + (y / w + 1.0) * (t - b + 1) / 2.0
+    near, far = view.depth
+    zw = near + (z / w + 1.0) * (far - near) / 2.0
+    lo, hi = min(near, far), max(near, far)
+    zi = min(max(math.floor(zw + 0.5), math.floor(lo + 0.5)), math.floor(hi + 0.5))
+    return True, math.floor(xw + 0.5), math.floor(yw + 0.5), int(zi)
+
+
+def _make_cmov(dim: int, suffix: str):
+    name = f"cmov{'2' if dim == 2 else ''}{suffix}"
+    integer = suffix in ("i", "s")
+
+    @gl_function(record=True)
+    def call(*args) -> None:
+        vals = coords(name, args, dim, integer)
+        ctx = current(name, args)
+        p = (vals[0], vals[1], vals[2] if dim == 3 else 0.0, 1.0)
+        valid, x, y, z = character_position(ctx, p)
+        ctx.cpos_valid = valid
+        if valid:
+            ctx.cpos = (x, y)
+            ctx.cpos_z = z
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = (f"{name}(...): set the current character position to this "
+                    f"{'2-D ' if dim == 2 else ''}point transformed to window "
+                    f"coordinates (cmov(3G)).")
+    return call
+
+
+cmov, cmovi, cmovs = (_make_cmov(3, s) for s in ("", "i", "s"))
+cmov2, cmov2i, cmov2s = (_make_cmov(2, s) for s in ("", "i", "s"))
+
+
+def _string(name: str, args: tuple) -> str:
+    if len(args) != 1:
+        raise GLTypeError(f"{describe(name, args)}: expected 1 argument, got {len(args)}")
+    s = args[0]
+    if isinstance(s, bytes):
+        return s.decode("latin-1")
+    if not isinstance(s, str):
+        raise GLTypeError(f"{describe(name, args)}: the string must be a str, not "
+                          f"{type(s).__name__}")
+    return s
+
+
+def _packed(colour) -> int:
+    """RGBA floats -> 0xAABBGGRR with the vertex-colour rounding (numeric model s. 4)."""
+    word = 0
+    for i, c in enumerate(colour):
+        word |= min(255, max(0, math.floor(float(c) * 255.0 + 0.5))) << (8 * i)
+    return word
+
+
+@gl_function(record=True)
+def charstr(*args) -> None:
+    """charstr(s): draw ``s`` at the current character position in the current colour
+    and advance the position (charstr(3G)); see the module docstring."""
+    s = _defined(_string("charstr", args))
+    ctx = current("charstr", args)
+    if not s or not ctx.cpos_valid:
+        return
+    x0, y0 = ctx.cpos
+    bits = FONT.string_bitmap(s)  # (13, 8n), row 0 at the bottom of the cell
+    rows, cols = np.nonzero(bits)
+    if rows.size:
+        xy = np.stack([x0 + cols, y0 - FONT.descender + rows], axis=1).astype(np.int64)
+        z = np.full(rows.size, ctx.cpos_z, dtype=np.int64)
+        rgba = np.full(rows.size, _packed(ctx.colour), dtype=np.int64)
+        ctx.batch.add_fragments(xy, z, rgba, ctx.raster.snapshot())
+    ctx.cpos = (x0 + FONT.string_width(s), y0)
+
+
+@gl_function(record=False)
+def strwidth(*args) -> int:
+    """strwidth(s) -> int: the width of ``s`` in pixels in the current font (what
+    charstr advances the character position by)."""
+    s = _string("strwidth", args)
+    current("strwidth", args)
+    return FONT.string_width(_defined(s))
+
+
+@gl_function(record=False)
+def getheight(*args) -> int:
+    """getheight() -> int: the height of the current font's cells (13)."""
+    current("getheight", args)
+    return FONT.height
+
+
+@gl_function(record=False)
+def getdescender(*args) -> int:
+    """getdescender() -> int: rows of the current font below the baseline (3)."""
+    current("getdescender", args)
+    return FONT.descender
+
+
+@gl_function(record=True)
+def font(*args) -> None:
+    """font(n): select raster font ``n``.  Only font 0, the built-in font, exists
+    (defrasterfont is not emulated); another number is a GLValueError."""
+    if len(args) != 1:
+        raise GLTypeError(f"{describe('font', args)}: expected 1 argument, got {len(args)}")
+    n = as_int("font", args, "fntnum", args[0])
+    if n != 0:
+        raise GLValueError(f"{describe('font', args)}: font {n} is not defined (only font 0, "
+                           f"the built-in font, exists; defrasterfont is not emulated)")
+    current("font", args).font = 0
+
+
+@gl_function(record=False)
+def getfont(*args) -> int:
+    """getfont() -> int: the current font number (always 0)."""
+    return int(current("getfont", args).font)
+
+
+@gl_function(record=False)
+def getcpos(*args) -> tuple[int, int]:
+    """getcpos() -> (x, y): the current character position in window pixels."""
+    x, y = current("getcpos", args).cpos[:2]
+    return int(x), int(y)

@@ -14,8 +14,11 @@ import numpy as np
 from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, CommandBatch
 from vgxsim.geometry import assembly
 from vgxsim.geometry.pipeline import Viewing, draw_lines, draw_points, draw_triangles
+from vgxsim.geometry.transform import apply
 from vgxsim.kernels.accum import accumulate
-from vgxsim.lighting import LightingTables, light_to_eye, shade
+from vgxsim.lighting import LightingError, LightingTables, light_to_eye, shade
+from vgxsim.state import colormap
+from vgxsim.state.colormap import default_colormap
 from vgxsim.state.matrices import MatrixState
 from vgxsim.state.planes import ZMAX, ZMIN, Framebuffer, PlaneConfig, unpack_rgba
 from vgxsim.state.raster import needs_colour
@@ -51,15 +54,42 @@ class Context:
         self.lighting = LightingTables()
         self.bound = {"material": 0, "backmaterial": 0, "lmodel": 0, "lights": {}}
         self.lmcolor_mode = 0
+        # lmcolor(3G): colour commands change the bound material "in the hardware";
+        # the change is lost when a material is bound.  True once a colour command
+        # has reached the material since the last lmbind(MATERIAL)/lmcolor.
+        self.lmcolor_set = True
+        # Colour map (cmode): mapcolor(3G) entries, multimap(3G)/setmap(3G).
+        self.colormap = default_colormap()
+        self.multimap = False
+        self.curmap = 0
+        # Attributes that only queries read (gl/_raster.py): deflinestyle(3G) table
+        # and current index, polymode, smoothing, dither and glcompat(3G) modes.
+        self.linestyles: dict[int, int] = {0: 0xFFFF}
+        self.linestyle_index = 0
+        self.polymode = 1  # PYM_FILL
+        self.smooth = {"point": 0, "line": 0, "polygon": 0}
+        self.dither = 1  # DT_ON
+        self.compat: dict[int, int] = {}
         self.depth_range = (ZMIN, ZMAX)
         self.sink = None
         self.frames = 0
         self.readsource = 0  # SRC_AUTO
+        # Vertex assembly (gl/_draw.py): the open bgn* primitive, its vertices as
+        # ((x, y, z, w), colour, normal, normal_sent_last) and swaptmesh() positions.
         self.prim: str | None = None
         self.prim_verts: list = []
         self.prim_swaps: list[int] = []
         self.concave = False
-        self.linestyle_pos = 0
+        self.linestyle_pos = 0  # line-style position after the last line drawn
+        # Old-style drawing (gl/_oldstyle.py): the current graphics position (object
+        # coordinates, move(3G)/draw(3G)); text (gl/_text.py): the current character
+        # position in window pixels (cmov(3G)), its z, whether it is defined (cmov:
+        # "undefined if the transformed point is outside the viewport"), the font.
+        self.gpos = (0.0, 0.0, 0.0, 1.0)
+        self.cpos = (0, 0)
+        self.cpos_z = 0
+        self.cpos_valid = True
+        self.font = 0
         self.configure(self.pending)
 
     # -- configuration ----------------------------------------------------------------
@@ -107,6 +137,8 @@ class Context:
             self.bound["lights"].pop(slot, None)
             return
         light = self.lighting.light(index)
+        if light is None:
+            raise LightingError(f"lmbind: light {index} is not defined (lmdef(DEFLIGHT, ...))")
         self.bound["lights"][slot] = (index, light_to_eye(light, self.matrices.modelview_matrix()))
 
     def shade_vertices(self, obj, normals, colours, lit) -> np.ndarray:
@@ -122,24 +154,26 @@ class Context:
         ndarray, shape (N, 4), float64
         """
         out = np.array(colours, dtype=np.float64)
-        if not self.lighting_active() or not lit.any():
+        # cmode lighting (COLORINDEXES) is not modelled: lit vertices keep the
+        # current colour index rather than getting RGB written into index planes.
+        if not self.lighting_active() or not lit.any() or not self.config.rgb:
             return out
         mv = self.matrices.modelview_matrix()
-        eye = (obj[lit] @ mv)
+        eye = apply(obj[lit], mv)
         pos = eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4])
-        nrm = normals[lit] @ self.matrices.normal_matrix()
+        nrm = apply(normals[lit], self.matrices.normal_matrix())
         mat = self.lighting.material(self.bound["material"])
         lm = self.lighting.lmodel(self.bound["lmodel"])
         lights = [entry for _slot, (_i, entry) in sorted(self.bound["lights"].items())]
         override = None
-        if self.lmcolor_mode not in (0, 6):
+        if self.lmcolor_mode not in (0, 6) and self.lmcolor_set:
             override = (self.lmcolor_mode, np.asarray(colours, np.float64)[lit])
         out[lit] = shade(pos, nrm, mat, lights, lm, color_override=override)
         return out
 
     # -- drawing ---------------------------------------------------------------------
     def draw_arrays(self, kind: str, obj, colours=None, normals=None, lit=None,
-                    swaps=(), indices=None) -> None:
+                    swaps=(), indices=None, provoking=None, pattern_offset: int = 0) -> None:
         """Draw one primitive (or a mesh, with ``indices``) from arrays.
 
         Parameters
@@ -157,6 +191,14 @@ class Context:
             tmesh only: vertex counts at which swaptmesh() was called.
         indices : ndarray, shape (T, 3), optional
             'triangles' only: a triangle list.
+        provoking : ndarray, shape (T,), optional
+            'triangles' only: the vertex whose colour each triangle takes under
+            shademodel(FLAT) (default: its third vertex).  Display objects use it to
+            keep each polygon's last-vertex colour when many polygons become one draw.
+        pattern_offset : int
+            Lines only: line-style position at the first vertex (move/draw continue
+            the pattern, docs/numeric_model.md s. 5).  ``self.linestyle_pos`` is left
+            at the position after the last segment.
         """
         obj = np.asarray(obj, dtype=np.float64)
         if obj.ndim != 2 or obj.shape[0] == 0:
@@ -180,8 +222,9 @@ class Context:
         view = self.viewing()
         if kind in (LINE, CLOSEDLINE):
             segs = assembly.line_segments(n, kind == CLOSEDLINE)
-            starts = self._pattern_starts(obj, segs, view)
-            draw_lines(self.batch, rs, view, obj, rgba, segs, starts)
+            starts, end = self._pattern_starts(obj, segs, view)
+            draw_lines(self.batch, rs, view, obj, rgba, segs, starts + int(pattern_offset))
+            self.linestyle_pos = int(pattern_offset) + end
             return
         if kind == POINT:
             draw_points(self.batch, rs, view, obj, rgba)
@@ -195,19 +238,23 @@ class Context:
             flat = None if rgba is None else rgba[tris[:, 2]]
         elif kind == QSTRIP:
             tris = assembly.qstrip_triangles(n)
-            flat = None if rgba is None else rgba[tris[:, 1]]
+            # Flat shading: both triangles of a quad take its last vertex (q + 3),
+            # the largest index in each (shademodel(3G): the last vertex).
+            flat = None if rgba is None else rgba[tris.max(axis=1)]
         elif kind == "triangles":
             tris = np.asarray(indices, np.int64).reshape(-1, 3)
-            flat = None if rgba is None else rgba[tris[:, 2]]
+            prov = tris[:, 2] if provoking is None else np.asarray(provoking, np.int64)
+            flat = None if rgba is None else rgba[prov]
         else:
             raise ValueError(f"unknown primitive kind {kind!r}")
         draw_triangles(self.batch, rs, view, obj, rgba, tris, flat)
 
-    def _pattern_starts(self, obj, segs, view) -> np.ndarray:
-        """Line-style position of each segment: continues along a polyline."""
+    def _pattern_starts(self, obj, segs, view) -> tuple[np.ndarray, int]:
+        """Line-style position of each segment (it continues along a polyline), and
+        the position after the last segment."""
         if segs.shape[0] == 0:
-            return np.zeros(0, np.int64)
-        clip = obj @ view.mvp
+            return np.zeros(0, np.int64), 0
+        clip = apply(obj, view.mvp)
         w = np.where(clip[:, 3] == 0, 1e-30, clip[:, 3])
         l, r, b, t = view.viewport
         x = (clip[:, 0] / w + 1) * (r - l + 1) / 2
@@ -215,10 +262,11 @@ class Context:
         steps = np.maximum(np.abs(np.round(x[segs[:, 1]]) - np.round(x[segs[:, 0]])),
                            np.abs(np.round(y[segs[:, 1]]) - np.round(y[segs[:, 0]])))
         steps = np.nan_to_num(steps, nan=0.0, posinf=0.0, neginf=0.0).astype(np.int64)
-        return np.concatenate([[0], np.cumsum(steps)[:-1]]).astype(np.int64)
+        total = np.cumsum(steps)
+        return np.concatenate([[0], total[:-1]]).astype(np.int64), int(total[-1])
 
     def _concave_triangles(self, obj, view) -> np.ndarray:
-        clip = obj @ view.mvp
+        clip = apply(obj, view.mvp)
         w = np.where(np.abs(clip[:, 3]) < 1e-300, 1e-300, clip[:, 3])
         xy = np.stack([clip[:, 0] / w, clip[:, 1] / w], axis=1)
         return assembly.triangulate_concave(xy)
@@ -264,13 +312,8 @@ class Context:
         return self.colormap_lookup(self.fb.front)
 
     def colormap_lookup(self, packed: np.ndarray) -> np.ndarray:
-        cmap = getattr(self, "colormap", None)
-        if cmap is None:
-            from vgxsim.state.colormap import default_colormap
-            cmap = self.colormap = default_colormap()
-        idx = (packed & 0xFFF).astype(np.int64) % cmap.shape[0]
-        rgb = cmap[idx]
-        return np.concatenate([rgb, np.full(packed.shape + (1,), 255, np.uint8)], axis=2)
+        """(H, W, 4) uint8 RGBA of index words through the current colour map."""
+        return colormap.lookup(self.colormap, packed, self.multimap, self.curmap)
 
     # -- accumulation ----------------------------------------------------------------
     def acbuf(self, op: int, value: float) -> None:
