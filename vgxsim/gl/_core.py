@@ -125,6 +125,9 @@ def flat_numbers(name: str, args: tuple, n: int | None, integer: bool = False) -
             args[0], np.ndarray) else tuple(args[0])
     if n is not None and len(seq) != n:
         raise GLTypeError(f"{describe(name, args)}: expected {n} numbers, got {len(seq)}")
+    # Fast path: plain Python floats/ints (the common case in immediate mode).
+    if not integer and all(type(v) is float or type(v) is int for v in seq):
+        return [float(v) for v in seq]
     out = []
     for i, v in enumerate(seq):
         if integer:

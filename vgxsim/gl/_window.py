@@ -149,6 +149,11 @@ def present(ctx: Context, force: bool = False) -> bool:
         return False
     img = ctx.display_rgba()
     shown = getattr(ctx, "shown", None)
+    if isinstance(shown, str):  # "fresh": the planes as allocated (all zero)
+        zero = np.zeros((1, 1), np.uint32)
+        pixel = (np.zeros(4, np.uint8) if ctx.config.rgb
+                 else ctx.colormap_lookup(zero)[0, 0])
+        shown = np.broadcast_to(pixel, img.shape)
     if not force and shown is not None and np.array_equal(img, shown):
         return False
     ctx.sink.write(img)
@@ -173,7 +178,9 @@ def present_windows(final: bool = False) -> None:
 def _baseline(ctx: Context) -> None:
     # Freshly allocated planes are what the screen shows before any drawing; only
     # changes from here make frames of a single-buffered window.
-    ctx.shown = ctx.display_rgba() if not ctx.config.double else None
+    # Computed lazily in present(): fresh planes are all zero, so the screen shows
+    # index/colour 0 everywhere, and a window nobody watches costs nothing here.
+    ctx.shown = "fresh" if not ctx.config.double else None
 
 
 # -- opening and closing ----------------------------------------------------------------

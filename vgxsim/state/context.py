@@ -100,11 +100,12 @@ class Context:
         cleared (colour 0, z = GD_ZMAX, stencil 0) and registers that gconfig resets
         (swritemask, the draw buffers) are reset.
         """
-        if getattr(self, "batch", None) is not None:
+        if getattr(self, "_batch", None) is not None:
             self.batch.flush()
         self.config = config
         self.fb = Framebuffer(config)
-        self.batch = CommandBatch(self.fb)
+        self._batch = CommandBatch(self.fb)
+        self._pending = None  # deferred triangle draws (see _defer_triangles)
         old = getattr(self, "raster", None)
         self.raster = RasterRegisters(config.width, config.height, config.double)
         if old is not None:
@@ -141,13 +142,27 @@ class Context:
             raise LightingError(f"lmbind: light {index} is not defined (lmdef(DEFLIGHT, ...))")
         self.bound["lights"][slot] = (index, light_to_eye(light, self.matrices.modelview_matrix()))
 
-    def shade_vertices(self, obj, normals, colours, lit) -> np.ndarray:
+    def lighting_snapshot(self):
+        """Everything per-vertex lighting reads, as immutable objects, or None when
+        lighting is off (matrices and definitions are replaced, never mutated)."""
+        if not self.lighting_active() or not self.config.rgb:
+            return None
+        lights = tuple(entry for _slot, (_i, entry) in sorted(self.bound["lights"].items()))
+        override = self.lmcolor_mode if (self.lmcolor_mode not in (0, 6)
+                                         and self.lmcolor_set) else None
+        return (self.matrices.modelview_matrix(), self.matrices.normal_matrix(),
+                self.lighting.material(self.bound["material"]),
+                self.lighting.lmodel(self.bound["lmodel"]), lights, override)
+
+    def shade_vertices(self, obj, normals, colours, lit, snapshot=None) -> np.ndarray:
         """Per-vertex colour: lit vertices through the IRIS lighting equation.
 
         Parameters
         ----------
         obj : ndarray, shape (N, 4); normals : ndarray, shape (N, 3)
         colours : ndarray, shape (N, 4); lit : ndarray, shape (N,), bool
+        snapshot : tuple, optional
+            A :meth:`lighting_snapshot` (default: the current lighting state).
 
         Returns
         -------
@@ -156,20 +171,68 @@ class Context:
         out = np.array(colours, dtype=np.float64)
         # cmode lighting (COLORINDEXES) is not modelled: lit vertices keep the
         # current colour index rather than getting RGB written into index planes.
-        if not self.lighting_active() or not lit.any() or not self.config.rgb:
+        snap = self.lighting_snapshot() if snapshot is None else snapshot
+        if snap is None or not lit.any():
             return out
-        mv = self.matrices.modelview_matrix()
+        mv, nmat, mat, lm, lights, override_mode = snap
         eye = apply(obj[lit], mv)
         pos = eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4])
-        nrm = apply(normals[lit], self.matrices.normal_matrix())
-        mat = self.lighting.material(self.bound["material"])
-        lm = self.lighting.lmodel(self.bound["lmodel"])
-        lights = [entry for _slot, (_i, entry) in sorted(self.bound["lights"].items())]
+        nrm = apply(normals[lit], nmat)
         override = None
-        if self.lmcolor_mode not in (0, 6) and self.lmcolor_set:
-            override = (self.lmcolor_mode, np.asarray(colours, np.float64)[lit])
-        out[lit] = shade(pos, nrm, mat, lights, lm, color_override=override)
+        if override_mode is not None:
+            override = (override_mode, np.asarray(colours, np.float64)[lit])
+        out[lit] = shade(pos, nrm, mat, list(lights), lm, color_override=override)
         return out
+
+    @property
+    def batch(self) -> CommandBatch:
+        """The command batch, after queuing any deferred triangle draws (so every
+        user of the batch sees primitives in drawing order)."""
+        if self._pending is not None:
+            self._commit_triangles()
+        return self._batch
+
+    def _defer_triangles(self, obj, cols, normals, lit, tris, prov) -> None:
+        """Queue one primitive's triangles for a combined geometry pass.
+
+        Consecutive primitives drawn with the same raster snapshot, transform and
+        lighting (Heidmann's DrawObjects: hundreds of small polygons) are
+        transformed, lit, clipped and set up in one vectorized call instead of one
+        each; the result is identical because every stage works per vertex or per
+        triangle with a row-independent rounding order.
+        """
+        rs = self.raster.snapshot()
+        key = (rs, self.matrices.mvp(), self.raster.viewport, self.depth_range,
+               self.lighting_snapshot() if normals is not None else None)
+        pend = self._pending
+        if pend is not None and not _same_key(pend["key"], key):
+            self._commit_triangles()
+            pend = None
+        if pend is None:
+            pend = self._pending = {"key": key, "parts": [], "n": 0}
+        base = pend["n"]
+        pend["parts"].append((obj, cols, normals, lit, tris + base, prov + base))
+        pend["n"] = base + obj.shape[0]
+
+    def _commit_triangles(self) -> None:
+        pend, self._pending = self._pending, None
+        rs, mvp, viewport, depth, snap = pend["key"]
+        parts = pend["parts"]
+        obj = np.concatenate([p[0] for p in parts])
+        tris = np.concatenate([p[4] for p in parts])
+        prov = np.concatenate([p[5] for p in parts])
+        rgba = None
+        if parts[0][1] is not None:
+            cols = np.concatenate([p[1] for p in parts])
+            if snap is not None:
+                normals = np.concatenate([p[2] if p[2] is not None
+                                          else np.zeros((p[0].shape[0], 3)) for p in parts])
+                lit = np.concatenate([p[3] for p in parts])
+                rgba = self.shade_vertices(obj, normals, cols, lit, snapshot=snap)
+            else:
+                rgba = np.array(cols, dtype=np.float64)
+        flat = None if rgba is None else rgba[prov]
+        draw_triangles(self._batch, rs, Viewing(mvp, viewport, depth), obj, rgba, tris, flat)
 
     # -- drawing ---------------------------------------------------------------------
     def draw_arrays(self, kind: str, obj, colours=None, normals=None, lit=None,
@@ -210,16 +273,27 @@ class Context:
                                   np.ones((obj.shape[0], 1))], axis=1)
         n = obj.shape[0]
         rs = self.raster.snapshot()
-        rgba = None
+        cols = None
+        lighting = normals is not None and self.lighting_active()
         if needs_colour(rs):
             cols = (np.broadcast_to(np.asarray(self.colour, np.float64), (n, 4))
                     if colours is None else np.asarray(colours, np.float64))
-            if normals is not None and self.lighting_active():
-                litm = np.ones(n, bool) if lit is None else np.asarray(lit, bool)
+        litm = None
+        if lighting:
+            litm = np.ones(n, bool) if lit is None else np.asarray(lit, bool)
+        view = self.viewing()
+        if kind not in (LINE, CLOSEDLINE, POINT):
+            tris, prov = self._triangles_of(kind, n, obj, view, swaps, indices, provoking)
+            self._defer_triangles(
+                obj, None if cols is None else np.array(cols, dtype=np.float64),
+                np.asarray(normals, np.float64) if lighting else None, litm, tris, prov)
+            return
+        rgba = None
+        if cols is not None:
+            if lighting:
                 rgba = self.shade_vertices(obj, np.asarray(normals, np.float64), cols, litm)
             else:
                 rgba = np.array(cols, dtype=np.float64)
-        view = self.viewing()
         if kind in (LINE, CLOSEDLINE):
             segs = assembly.line_segments(n, kind == CLOSEDLINE)
             starts, end = self._pattern_starts(obj, segs, view)
@@ -229,25 +303,27 @@ class Context:
         if kind == POINT:
             draw_points(self.batch, rs, view, obj, rgba)
             return
+
+    def _triangles_of(self, kind, n, obj, view, swaps, indices, provoking):
+        """Triangles of a primitive and, per triangle, the vertex whose colour it
+        takes under shademodel(FLAT) (the last vertex, shademodel(3G))."""
         if kind == POLYGON:
             tris = (self._concave_triangles(obj, view) if self.concave
                     else assembly.polygon_fan(n))
-            flat = None if rgba is None else np.repeat(rgba[-1:], len(tris), axis=0)
+            prov = np.full(len(tris), n - 1, np.int64)
         elif kind == TMESH:
             tris = assembly.tmesh_triangles(n, list(swaps))
-            flat = None if rgba is None else rgba[tris[:, 2]]
+            prov = tris[:, 2].copy()
         elif kind == QSTRIP:
             tris = assembly.qstrip_triangles(n)
-            # Flat shading: both triangles of a quad take its last vertex (q + 3),
-            # the largest index in each (shademodel(3G): the last vertex).
-            flat = None if rgba is None else rgba[tris.max(axis=1)]
+            # Both triangles of a quad take its last vertex (q + 3), the largest index.
+            prov = tris.max(axis=1)
         elif kind == "triangles":
             tris = np.asarray(indices, np.int64).reshape(-1, 3)
-            prov = tris[:, 2] if provoking is None else np.asarray(provoking, np.int64)
-            flat = None if rgba is None else rgba[prov]
+            prov = tris[:, 2].copy() if provoking is None else np.asarray(provoking, np.int64)
         else:
             raise ValueError(f"unknown primitive kind {kind!r}")
-        draw_triangles(self.batch, rs, view, obj, rgba, tris, flat)
+        return np.asarray(tris, np.int64).reshape(-1, 3), prov
 
     def _pattern_starts(self, obj, segs, view) -> tuple[np.ndarray, int]:
         """Line-style position of each segment (it continues along a polyline), and
@@ -340,6 +416,20 @@ class Context:
 
     def _readsource_name(self) -> str:
         return {1: "front", 2: "back"}.get(self.readsource, "auto")
+
+
+def _same_key(a: tuple, b: tuple) -> bool:
+    """Deferral keys match: same objects (matrices and snapshots are immutable)."""
+    rs_a, mvp_a, vp_a, depth_a, snap_a = a
+    rs_b, mvp_b, vp_b, depth_b, snap_b = b
+    if rs_a is not rs_b or mvp_a is not mvp_b or vp_a != vp_b or depth_a != depth_b:
+        return False
+    if snap_a is None or snap_b is None:
+        return snap_a is snap_b
+    if len(snap_a[4]) != len(snap_b[4]) or snap_a[5] != snap_b[5]:
+        return False
+    return all(x is y for x, y in zip(snap_a[:4], snap_b[:4], strict=True)) and all(
+        x is y for x, y in zip(snap_a[4], snap_b[4], strict=True))
 
 
 def replace_config(ctx: Context, **changes) -> PlaneConfig:

@@ -13,6 +13,8 @@ import numpy as np
 
 MSINGLE, MPROJECTION, MVIEWING, MTEXTURE = 0, 1, 2, 3
 STACK_DEPTH = 32  # MATRIXSTACKDEPTH (gl.h)
+_IDENTITY = np.eye(4)
+_IDENTITY.flags.writeable = False
 
 
 class MatrixStackError(RuntimeError):
@@ -94,7 +96,7 @@ class MatrixState:
 
     def modelview_matrix(self) -> np.ndarray:
         if self.mode == MSINGLE:
-            return np.eye(4)
+            return _IDENTITY  # one shared read-only object: callers compare by identity
         return self.modelview[-1]
 
     def mvp(self) -> np.ndarray:
