@@ -53,6 +53,7 @@ from .fragment import (
 from .options import inline_ir, jit
 from .raster import covers, row_span
 
+NARROW = 8  # triangles at most this many pixels wide find their spans by scanning
 KIND_TRIANGLE = 0
 KIND_FRAGMENTS = 1
 KIND_CLEAR = 2
@@ -115,9 +116,22 @@ def _triangle_rows(
     dpass = dv[D_DZPASS]
     dfail = dv[D_DZFAIL]
     smax = dv[D_SMAX]
+    narrow = xhi - xlo < NARROW
     for y in range(ylo, yhi + 1):
         if edge_mode:
             xl, xr = xlo, xhi
+        elif narrow:
+            # Small triangles: scan the few pixel centres of the row with the edge
+            # functions (multiply-adds) instead of solving for the span (divisions).
+            xl = xhi + 1
+            xr = xlo - 1
+            for x in range(xlo, xhi + 1):
+                if covers(edge, x, y):
+                    if x < xl:
+                        xl = x
+                    xr = x
+            if xl > xr:
+                continue
         else:
             xl, xr = row_span(edge, y, xlo, xhi)
             if xl > xr:
@@ -153,12 +167,12 @@ def _triangle_rows(
                 else:
                     srow[ux] = t1[s]
         elif mode == MODE_ZONLY:
-            zrow = zbuf[y]
+            uy = np.uintp(y)
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                if cmp_pass(zfunc, zi, np.int64(zrow[ux])):
-                    zrow[ux] = zi
+                if cmp_pass(zfunc, zi, np.int64(zbuf[uy, ux])):
+                    zbuf[uy, ux] = zi
         else:
             if colour:
                 ra = t_col[t, 0, 0] + t_col[t, 0, 2] * (y - y0)
@@ -181,7 +195,7 @@ def _triangle_rows(
                 fragment(x, y, zi, rgba, st, dv, tab, front, back, zbuf, sten)
 
 
-@jit
+@inline_ir
 def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                  front, back, zbuf, sten):
     """MODE_COLOUR: shaded span with read-only stencil, optional z, simple blend."""

@@ -31,7 +31,16 @@ from vgxsim.state.raster import FLAT, ROW, ROW_SIZE, RasterState
 
 __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL"]
 
-BAND_SHIFT = 5  # bands of 32 rows: a 1280-wide band of z+stencil+colour fits in L2
+# Bands are 2**shift rows: 32 to 256, about two bands per thread.  Tall bands keep
+# the triangle records a band reads dense in memory (many small triangles are
+# latency-bound on those reads); at least two bands per thread balance the load.
+MIN_BAND_SHIFT, MAX_BAND_SHIFT = 5, 8
+
+
+def band_shift(height: int, nthreads: int) -> int:
+    """Rows per band (as a shift) for a window height and thread count."""
+    rows = max(1, height // (2 * max(1, nthreads)))
+    return max(MIN_BAND_SHIFT, min(MAX_BAND_SHIFT, rows.bit_length() - 1))
 MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
 
 
@@ -246,16 +255,18 @@ class CommandBatch:
         derived, tables = derive_states(states, fb.config.stencil, True, fb.z is not None)
         front, back, z, st = fb.kernel_planes()
         height = fb.height
-        nbands = (height + (1 << BAND_SHIFT) - 1) >> BAND_SHIFT
-        starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, BAND_SHIFT, nbands)
+        nthreads = max(1, threads.get_threads())
+        shift = band_shift(height, nthreads)
+        nbands = (height + (1 << shift) - 1) >> shift
+        starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
         args = (
-            starts, items, BAND_SHIFT, height, self.p_kind, self.p_ref,
+            starts, items, shift, height, self.p_kind, self.p_ref,
             self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state,
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
         )
-        nthreads = max(1, min(threads.get_threads(), nbands))
+        nthreads = min(nthreads, nbands)
         if nthreads == 1:
             render_bands(0, 1, *args)
         else:
