@@ -14,7 +14,6 @@ import numpy as np
 
 from vgxsim import threads
 from vgxsim.kernels.clip import snap_window
-from vgxsim.kernels.fragment import derive_states
 from vgxsim.kernels.render import (
     CLEAR_COLOUR,
     CLEAR_STENCIL,
@@ -26,6 +25,7 @@ from vgxsim.kernels.render import (
     render_bands,
 )
 from vgxsim.kernels.setup import setup_triangles
+from vgxsim.state.derive import derive_states
 from vgxsim.state.planes import Framebuffer
 from vgxsim.state.raster import FLAT, ROW, ROW_SIZE, RasterState
 
