@@ -26,6 +26,11 @@ def _sat16(v):
 
 @inline
 def _round(v):
+    """floor(v + 0.5), first limited to +-2**20 (NaN as 0) so the integer conversion
+    cannot overflow; every result is saturated to 16 bits afterwards anyway."""
+    if not (v == v):
+        v = 0.0
+    v = min(max(v, -1048576.0), 1048576.0)
     return np.int64(np.floor(v + 0.5))
 
 

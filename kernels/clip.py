@@ -11,8 +11,9 @@ Pixels outside the viewport are removed later by the raster rectangle (scissor),
 x/y clipping rarely creates vertices and edges keep their exact direction.
 
 Watertightness across clipped shared edges: an edge is always intersected from its
-lexicographically smaller endpoint, so two triangles sharing an edge compute the
-bit-identical intersection point.
+endpoint inside the plane, so two triangles sharing an edge compute the bit-identical
+intersection point (and the parameter stays accurate when the outside endpoint is
+enormously far away).
 """
 
 from __future__ import annotations
@@ -71,19 +72,13 @@ def outcodes(v, gx, gy):
         for p in range(N_PLANES):
             if not (_dist(x, y, z, w, p, gx, gy) >= 0.0):
                 c |= 1 << p
+        if c == 0 and not (w > 0.0):
+            # Only the clip-space origin (the eye of a perspective projection) is inside
+            # all six planes with w = 0: send it to the clipper, which drops polygons
+            # touching it (they are edge-on and cover nothing).
+            c = 1 << N_PLANES
         out[i] = c
     return out
-
-
-@inline
-def _lex_less(ax, ay, az, aw, bx, by, bz, bw):
-    if ax != bx:
-        return ax < bx
-    if ay != by:
-        return ay < by
-    if az != bz:
-        return az < bz
-    return aw < bw
 
 
 @jit
@@ -172,12 +167,14 @@ def clip_triangles(v, attr, tris, gx, gy):
                         tmp[m, q] = poly[i, q]
                     m += 1
                 if in1 != in2:
-                    # Intersect from the lexicographically smaller endpoint.
-                    if _lex_less(poly[i2, 0], poly[i2, 1], poly[i2, 2], poly[i2, 3],
-                                 poly[i, 0], poly[i, 1], poly[i, 2], poly[i, 3]):
-                        lo, hi, dlo, dhi = i2, i, d2, d1
-                    else:
+                    # Intersect from the endpoint inside this plane: the parameter is
+                    # then small and exact enough even when the other endpoint is
+                    # enormously far out, and -- being independent of the traversal
+                    # direction -- a shared edge gets the same point in both triangles.
+                    if in1:
                         lo, hi, dlo, dhi = i, i2, d1, d2
+                    else:
+                        lo, hi, dlo, dhi = i2, i, d2, d1
                     s = dlo / (dlo - dhi)
                     for q in range(4 + k):
                         tmp[m, q] = poly[lo, q] + s * (poly[hi, q] - poly[lo, q])
@@ -324,30 +321,38 @@ def clip_segments(v, attr, segs, gx, gy):
                 ok = False
         if not ok:
             continue
-        t0 = 0.0
+        # Entering point measured from b (s0), leaving point from a (t1): each is
+        # interpolated from the endpoint inside the plane that cuts it.
+        s0 = 1.0
         t1 = 1.0
         for p in range(N_PLANES):
             da = _dist(v[a, 0], v[a, 1], v[a, 2], v[a, 3], p, gx, gy)
             db = _dist(v[b, 0], v[b, 1], v[b, 2], v[b, 3], p, gx, gy)
+            if not (np.isfinite(da) and np.isfinite(db)):
+                ok = False
+                break
             if da < 0.0 and db < 0.0:
                 ok = False
                 break
             if da < 0.0:
-                t = da / (da - db)
-                if t > t0:
-                    t0 = t
+                t = db / (db - da)
+                if t < s0:
+                    s0 = t
             elif db < 0.0:
                 t = da / (da - db)
                 if t < t1:
                     t1 = t
-        if not ok or t0 > t1:
+        if not ok or (1.0 - s0) > t1:
             continue
+        t0 = 1.0 - s0
         for q in range(4):
-            out_v[m, 0, q] = v[a, q] + t0 * (v[b, q] - v[a, q])
-            out_v[m, 1, q] = v[a, q] + t1 * (v[b, q] - v[a, q])
+            out_v[m, 0, q] = v[a, q] if s0 >= 1.0 else v[b, q] + s0 * (v[a, q] - v[b, q])
+            out_v[m, 1, q] = v[b, q] if t1 >= 1.0 else v[a, q] + t1 * (v[b, q] - v[a, q])
         for q in range(k):
-            out_attr[m, 0, q] = attr[a, q] + t0 * (attr[b, q] - attr[a, q])
-            out_attr[m, 1, q] = attr[a, q] + t1 * (attr[b, q] - attr[a, q])
+            out_attr[m, 0, q] = (attr[a, q] if s0 >= 1.0
+                                 else attr[b, q] + s0 * (attr[a, q] - attr[b, q]))
+            out_attr[m, 1, q] = (attr[b, q] if t1 >= 1.0
+                                 else attr[a, q] + t1 * (attr[b, q] - attr[a, q]))
         if not (out_v[m, 0, 3] > 0.0 and out_v[m, 1, 3] > 0.0):
             continue
         out_src[m] = s

@@ -265,6 +265,12 @@ def round_c(c):
 
 
 @inline
+def wrap_z24(zi):
+    """A full-mask z write: the low 24 bits, as a signed 24-bit value."""
+    return ((zi + 0x800000) & Z24_MASK) - 0x800000
+
+
+@inline
 def write_z(old, zi, zmask):
     """Masked 24-bit two's-complement z write, sign-extended back to int32."""
     u = ((old & ~zmask) | (zi & zmask)) & Z24_MASK

@@ -48,6 +48,7 @@ from .fragment import (
     fragment,
     round_c,
     round_z,
+    wrap_z24,
     write_z,
 )
 from .options import inline_ir, jit
@@ -172,7 +173,7 @@ def _triangle_rows(
                 ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
                 if cmp_pass(zfunc, zi, np.int64(zbuf[uy, ux])):
-                    zbuf[uy, ux] = zi
+                    zbuf[uy, ux] = wrap_z24(zi)
         else:
             if colour:
                 ra = t_col[t, 0, 0] + t_col[t, 0, 2] * (y - y0)
@@ -234,7 +235,7 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
             if not ((lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))):
                 continue
             if zwrite:
-                zrow[ux] = zi
+                zrow[ux] = wrap_z24(zi)
         dx = x - x0
         src = (round_c(ra + rdx * dx) | (round_c(ga + gdx * dx) << 8)
                | (round_c(ba + bdx * dx) << 16) | (round_c(aa + adx * dx) << 24))

@@ -181,6 +181,8 @@ class CommandBatch:
         yw = np.asarray(yw, np.float64)
         zw = np.asarray(zw, np.float64)
         tris = np.asarray(tris, np.int64).reshape(-1, 3)
+        if flat_col is None and col is not None and rs.shademodel == FLAT:
+            flat_col = np.asarray(col, np.float64)[tris[:, 2]]  # the last vertex's colour
         finite = np.isfinite(xw) & np.isfinite(yw) & np.isfinite(zw)
         keep = finite[tris].all(axis=1)
         src = np.nonzero(keep)[0].astype(np.int64)

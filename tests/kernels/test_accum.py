@@ -99,10 +99,6 @@ def test_hand_computed_sequence():
     assert acc[0, 0].tolist() == [32767] * 4
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "kernel bug: accum._round converts floor(v + 0.5) to int64 before saturating; "
-    "for |value * component| >= 2**63 the conversion overflows (INT64_MIN on x86), "
-    "so e.g. AC_MULT by 1e20 of a positive value saturates to -32768, not 32767"))
 @pytest.mark.parametrize("op", [AC_MULT, AC_ADD, AC_CLEAR, AC_ACCUMULATE,
                                 AC_CLEAR_ACCUMULATE])
 def test_enormous_values_saturate(op):

@@ -13,7 +13,6 @@ subpixel; without it, snapping may flip slivers near the boundary only).
 import math
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from kernel_helpers import clip_reference, full_state, kernel_framebuffer
@@ -211,10 +210,6 @@ def test_vertex_exactly_in_the_eye_plane():
         check_triangle([(-1, -1, 0, 1), (1, -1, 0, 1), (0, 3, -4, 1)], mvp, subpixel)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "kernel bug: clip_triangles keeps an unclipped triangle whose vertex is the "
-    "homogeneous origin (all outcodes 0), and project_snap leaves that vertex at "
-    "window (0, 0), so a spurious triangle reaching the lower-left pixel is drawn"))
 def test_clip_space_origin_vertex_covers_nothing():
     """A vertex at the homogeneous origin (0, 0, 0, 0) -- e.g. a vertex extruded from
     a light placed on it -- puts the triangle's plane through the eye: edge-on, it

@@ -390,11 +390,6 @@ def _fast_paths(cmds, cfg):
     return {int(m) for m in derived[:, D_MODE]}
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "kernel bug: the MODE_ZONLY and MODE_COLOUR span loops store the rounded z "
-    "directly (zrow[x] = zi) instead of through write_z, so a window z outside the "
-    "signed 24-bit range is stored unwrapped (9000000) where the model, the naive "
-    "oracle and the general path store its 24-bit two's-complement value (-7777216)"))
 @pytest.mark.parametrize("which", ["zonly", "colour"])
 def test_depth_outside_24_bits_is_stored_as_24_bits(which):
     cfg = dict(double=False, zbits=24, stencil=0)
@@ -410,11 +405,6 @@ def test_depth_outside_24_bits_is_stored_as_24_bits(which):
         assert_planes_equal(got, want, mode)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "batch bug: add_window_triangles(..., rs with shademodel FLAT) without flat_col "
-    "shades with a (1, 4) zero placeholder indexed by each triangle's source index "
-    "(out of bounds for every triangle after the first: no bounds check), instead "
-    "of the last vertex's colour the model prescribes"))
 def test_flat_shading_defaults_to_last_vertex_colour():
     cfg = dict(double=False, zbits=0, stencil=0)
     rs = full_state(W, H, shademodel=0)

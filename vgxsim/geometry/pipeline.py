@@ -50,12 +50,30 @@ def _project(clip_v, view: Viewing, subpixel: bool):
                         subpixel)
 
 
+HUGE = 1e300  # clip coordinates beyond this are rescaled before clipping
+
+
+def _tame(clip_v: np.ndarray) -> np.ndarray:
+    """Rescale vertices whose homogeneous coordinates are near float overflow.
+
+    (x, y, z, w) and (x, y, z, w) / m (m > 0) are the same point, so dividing the
+    rare vertex with a component beyond 1e300 by its largest magnitude keeps the
+    plane distances of the clipper (``gx * w - x``) finite.
+    """
+    big = np.abs(clip_v).max(axis=1) if clip_v.shape[0] else np.zeros(0)
+    rows = np.isfinite(big) & (big > HUGE)
+    if rows.any():
+        clip_v = clip_v.copy()
+        clip_v[rows] /= big[rows, None]
+    return clip_v
+
+
 def to_clip(obj: np.ndarray, mvp: np.ndarray) -> np.ndarray:
     """Object (N, 3 or 4) -> clip (N, 4) float64, as row vectors ``p @ mvp``."""
     obj = np.asarray(obj, dtype=np.float64)
     if obj.shape[1] == 3:
         obj = np.concatenate([obj, np.ones((obj.shape[0], 1))], axis=1)
-    return apply(obj, mvp)  # row-independent rounding (transform.apply)
+    return _tame(apply(obj, mvp))  # row-independent rounding (transform.apply)
 
 
 def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgba=None,
@@ -82,7 +100,7 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
     int
         Triangles queued.
     """
-    clip_v = clip_coords if clip_coords is not None else to_clip(obj, view.mvp)
+    clip_v = _tame(clip_coords) if clip_coords is not None else to_clip(obj, view.mvp)
     tris = np.ascontiguousarray(tris, dtype=np.int64).reshape(-1, 3)
     if tris.shape[0] == 0:
         return 0
