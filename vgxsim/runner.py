@@ -28,6 +28,7 @@ from contextlib import contextmanager
 from os import PathLike
 
 from vgxsim.events import EventQueue, EventSource, ScriptExhausted, load_script
+from vgxsim.gl._core import GLError
 from vgxsim.sinks import FrameSink, PNGSequenceSink, VideoSink, open_sink
 
 __all__ = ["FrameRecorder", "run_program", "parse_size", "gl_modules"]
@@ -135,6 +136,17 @@ def _exit_code(exc: SystemExit) -> int:
     return 1
 
 
+def _report_gl_error(exc: BaseException, path: str) -> None:
+    """Print a GLError as ``traceback`` would, keeping only frames outside vgxsim."""
+    pkg = os.path.dirname(os.path.abspath(__file__))
+    frames = [f for f in traceback.extract_tb(exc.__traceback__)
+              if not os.path.abspath(f.filename).startswith(pkg)
+              and not f.filename.startswith("<frozen")]
+    print("Traceback (most recent call last):", file=sys.stderr)
+    print("".join(traceback.format_list(frames)), end="", file=sys.stderr)
+    print(f"{type(exc).__name__}: {exc}", file=sys.stderr)
+
+
 def run_program(
     program: str | PathLike,
     args: list[str] | tuple[str, ...] = (),
@@ -202,6 +214,11 @@ def run_program(
                       file=sys.stderr)
             except KeyboardInterrupt:
                 status = 130
+            except GLError as exc:
+                # IRIS GL misuse: the program's own frames (file and line), then one
+                # line naming the call -- not vgxsim's internals.
+                _report_gl_error(exc, path)
+                status = 1
             except Exception:  # the program's own error: report it as python would
                 traceback.print_exc()
                 status = 1

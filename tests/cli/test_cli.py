@@ -182,3 +182,16 @@ def test_render_with_the_real_example(tmp_path):
     assert main(["render", "--out", str(out), "--size", "40x32", "--mode", "objects"]) == 0
     png = iio.imread(out)
     assert png.shape == (32, 40, 3) and png.any()
+
+
+def test_gl_misuse_reports_program_line_and_call(tmp_path):
+    """A GLError ends the run with status 1 and a report naming the program's file
+    and line and the IRIS GL call, without vgxsim's internal frames."""
+    prog = tmp_path / "misuse.py"
+    prog.write_text("from gl import *\nwinopen('x')\nstensize(9)\n")
+    proc = subprocess.run([sys.executable, "-m", "vgxsim.cli", "run", str(prog)],
+                          capture_output=True, text=True, cwd=tmp_path)
+    assert proc.returncode == 1
+    assert f'File "{prog}", line 3' in proc.stderr
+    assert "GLValueError: stensize(9): planes must be 0..8" in proc.stderr
+    assert "vgxsim/gl/" not in proc.stderr
