@@ -4,33 +4,23 @@ docs/numeric_model.md section 9: components are 0..255 integers in 16-bit signed
 accumulators, round(x) = floor(x + 0.5), AC_RETURN clamps to 0..255.
 """
 
+import functools
+
 import numpy as np
 import pytest
 
 from vgxsim import GL
-from vgxsim.geometry.transform import orthographic
-from vgxsim.gl import _core
 from vgxsim.gl._accum import acbuf
 from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError
 from vgxsim.gl._raster import czclear, wmpack
-from vgxsim.state.context import Context
 from vgxsim.state.planes import ZMAX
 
 W = H = 4
 
 
 @pytest.fixture
-def win():
-    def make(acbits=16, rgb=True):
-        ctx = Context(W, H, rgb=rgb, double=False, acbits=acbits)
-        _core.session.reset()
-        _core.session.windows[1] = ctx
-        _core.session.current = 1
-        ctx.matrices.load_projection(orthographic(-0.5, W - 0.5, -0.5, H - 0.5, -1, 1))
-        return ctx
-
-    yield make
-    _core.session.reset()
+def win(gl_window):
+    return functools.partial(gl_window, W, H, stencil=0, acbits=16)
 
 
 def pixel(ctx, x, y):

@@ -1,32 +1,22 @@
 """Colour calls of vgxsim.gl (_color.py): current colour, cmode indices, colour map."""
 
+import functools
+
 import numpy as np
 import pytest
 
 from vgxsim import GL
-from vgxsim.geometry.transform import orthographic
 from vgxsim.gl import _core
 from vgxsim.gl._color import *
 from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError
-from vgxsim.state.context import Context
 
 W = H = 4
 
 
 @pytest.fixture
-def win():
+def win(gl_window):
     """Factory: a current W x H single-buffered window (RGB unless rgb=False)."""
-
-    def make(rgb=True):
-        ctx = Context(W, H, rgb=rgb, double=False, stencil=8)
-        _core.session.reset()
-        _core.session.windows[1] = ctx
-        _core.session.current = 1
-        ctx.matrices.load_projection(orthographic(-0.5, W - 0.5, -0.5, H - 0.5, -1, 1))
-        return ctx
-
-    yield make
-    _core.session.reset()
+    return functools.partial(gl_window, W, H)
 
 
 def fill(ctx):

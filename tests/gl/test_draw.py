@@ -7,21 +7,16 @@ import pytest
 
 from vgxsim import GL, gl
 from vgxsim.gl import _core
-from vgxsim.state.context import Context
 from vgxsim.state.raster import FLAT
 
 W, H = 24, 20
 
 
 @pytest.fixture
-def ctx():
-    c = Context(W, H, rgb=True, double=False, stencil=8)
-    _core.session.reset()
-    _core.session.windows[1] = c
-    _core.session.current = 1
+def ctx(gl_window):
+    c = gl_window(W, H, projection=False)
     gl.ortho2(-0.5, W - 0.5, -0.5, H - 0.5)  # integer coordinates on pixel centres
-    yield c
-    _core.session.reset()
+    return c
 
 
 def lit_pixels(c, channel=None) -> set[tuple[int, int]]:

@@ -14,12 +14,7 @@ from vgxsim.gl._core import GLTypeError, GLValueError, session
 from vgxsim.sinks import MemorySink
 from vgxsim.state.context import CLEAR_COLOUR
 
-
-@pytest.fixture(autouse=True)
-def fresh_session():
-    session.reset()
-    yield
-    session.reset()
+pytestmark = pytest.mark.usefixtures("fresh_session")  # tests/gl/conftest.py
 
 
 def script(text: str) -> None:

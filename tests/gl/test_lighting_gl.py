@@ -19,11 +19,9 @@ import pytest
 
 from vgxsim import GL
 from vgxsim.geometry.transform import orthographic, rotation
-from vgxsim.gl import _core
 from vgxsim.gl._color import c3f, c4f, color, cpack
 from vgxsim.gl._core import GLTypeError, GLValueError
 from vgxsim.gl._lighting import *
-from vgxsim.state.context import Context
 from vgxsim.state.matrices import MVIEWING
 
 N = 8
@@ -33,18 +31,14 @@ R90 = rotation(90.0, "z")
 
 
 @pytest.fixture
-def win():
+def win(gl_window):
     def make(rgb=True):
-        ctx = Context(N, N, rgb=rgb, double=False)
-        _core.session.reset()
-        _core.session.windows[1] = ctx
-        _core.session.current = 1
+        ctx = gl_window(N, N, rgb=rgb, stencil=0, projection=False)
         ctx.matrices.set_mode(MVIEWING)
         ctx.matrices.load_projection(orthographic(-4, 4, -4, 4, -1, 1))
         return ctx
 
-    yield make
-    _core.session.reset()
+    return make
 
 
 def setup_scene(light_pos=(0, 1, 1, 0)):

@@ -9,19 +9,13 @@ import pytest
 
 from vgxsim import GL, gl
 from vgxsim.gl import _core
-from vgxsim.state.context import Context
 
 W, H = 16, 12
 
 
 @pytest.fixture
-def ctx():
-    c = Context(W, H, rgb=True, double=False, stencil=8)
-    _core.session.reset()
-    _core.session.windows[1] = c
-    _core.session.current = 1
-    yield c
-    _core.session.reset()
+def ctx(gl_window):
+    return gl_window(W, H, projection=False)
 
 
 def mat() -> np.ndarray:

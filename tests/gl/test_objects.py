@@ -7,25 +7,16 @@ import pytest
 
 from vgxsim import GL, gl
 from vgxsim.gl import _core
-from vgxsim.state.context import Context
 from vgxsim.state.raster import FLAT
 
 W, H = 48, 40
 
 
-def make_ctx() -> Context:
-    c = Context(W, H, rgb=True, double=False, stencil=8)
-    _core.session.reset()
-    _core.session.windows[1] = c
-    _core.session.current = 1
+@pytest.fixture
+def ctx(gl_window):
+    c = gl_window(W, H, projection=False)
     gl.ortho2(-0.5, W - 0.5, -0.5, H - 0.5)
     return c
-
-
-@pytest.fixture
-def ctx():
-    yield make_ctx()
-    _core.session.reset()
 
 
 def planes(c) -> tuple[np.ndarray, np.ndarray]:

@@ -5,39 +5,26 @@ zw = near + (z_ndc + 1) * (far - near) / 2, stored as floor(zw + 0.5)
 (docs/numeric_model.md sections 1 and 4).
 """
 
+import functools
 import math
 
 import numpy as np
 import pytest
 
 from vgxsim import GL
-from vgxsim.geometry.transform import orthographic
 from vgxsim.gl import _core
 from vgxsim.gl._color import cpack
 from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError
 from vgxsim.gl._raster import *
-from vgxsim.state.context import Context
 from vgxsim.state.planes import ZMAX, ZMIN
 
 W = H = 8
 
 
 @pytest.fixture
-def win():
+def win(gl_window):
     """Factory: a current W x H window (RGB, single-buffered, 8 stencil planes)."""
-
-    def make(**kw):
-        opts = dict(rgb=True, double=False, stencil=8, acbits=16)
-        opts.update(kw)
-        ctx = Context(W, H, **opts)
-        _core.session.reset()
-        _core.session.windows[1] = ctx
-        _core.session.current = 1
-        ctx.matrices.load_projection(orthographic(-0.5, W - 0.5, -0.5, H - 0.5, -1, 1))
-        return ctx
-
-    yield make
-    _core.session.reset()
+    return functools.partial(gl_window, W, H, acbits=16)
 
 
 def square(x0, y0, x1, y1, z=0.0, cw=False):

@@ -15,11 +15,7 @@ from vgxsim.state.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
 A, B, C, D = 0x80FF4020, 0x11223344, 0x55667788, 0xFFEEDDCC
 
 
-@pytest.fixture(autouse=True)
-def fresh_session():
-    session.reset()
-    yield
-    session.reset()
+pytestmark = pytest.mark.usefixtures("fresh_session")  # tests/gl/conftest.py
 
 
 def rgb_window(w=4, h=3, double=False, stencil=0):

@@ -8,21 +8,16 @@ import pytest
 from vgxsim import font as vfont
 from vgxsim import gl
 from vgxsim.gl import _core
-from vgxsim.state.context import Context
 
 W, H = 64, 32
 
 
 @pytest.fixture
-def ctx():
-    c = Context(W, H, rgb=True, double=False, stencil=8)
-    _core.session.reset()
-    _core.session.windows[1] = c
-    _core.session.current = 1
+def ctx(gl_window):
+    c = gl_window(W, H, projection=False)
     gl.ortho2(-0.5, W - 0.5, -0.5, H - 0.5)
     gl.cpack(0xFF00FFFF)  # yellow
-    yield c
-    _core.session.reset()
+    return c
 
 
 def lit_pixels(c) -> set[tuple[int, int]]:

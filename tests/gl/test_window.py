@@ -15,12 +15,7 @@ from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError, session
 from vgxsim.sinks import MemorySink, PNGSequenceSink
 from vgxsim.state.context import CLEAR_COLOUR
 
-
-@pytest.fixture(autouse=True)
-def fresh_session():
-    session.reset()
-    yield
-    session.reset()
+pytestmark = pytest.mark.usefixtures("fresh_session")  # tests/gl/conftest.py
 
 
 def ctx_of(gid):

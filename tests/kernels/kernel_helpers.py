@@ -190,13 +190,20 @@ def queue_commands(batch, commands, group_triangles=True):
     drain()
 
 
+def kernel_batch(fb, mode="span"):
+    """A CommandBatch on ``fb`` taking one rasterizer path: ``mode`` is 'span' (the
+    default paths), 'general' (``general_only``) or 'edge' (``edge_mode``)."""
+    batch = CommandBatch(fb)
+    batch.general_only = mode == "general"
+    batch.edge_mode = mode == "edge"
+    return batch
+
+
 def render_kernels(commands, w, h, *, double, zbits, stencil, init=None, mode="span",
                    group_triangles=True):
     """Render through CommandBatch; ``mode`` is 'span', 'general' or 'edge'."""
     fb = kernel_framebuffer(w, h, double=double, zbits=zbits, stencil=stencil, init=init)
-    batch = CommandBatch(fb)
-    batch.general_only = mode == "general"
-    batch.edge_mode = mode == "edge"
+    batch = kernel_batch(fb, mode)
     queue_commands(batch, commands, group_triangles=group_triangles)
     batch.flush()
     return planes_of(fb)
@@ -284,6 +291,16 @@ def guard(viewport):
     return max(1.0, 16384.0 / ((r - l + 1) / 2)), max(1.0, 16384.0 / ((t - b + 1) / 2))
 
 
+def clip_planes(gx, gy):
+    """Signed distances of a homogeneous vertex to the six clip planes (near, far,
+    then the x and y guard band ``gx``, ``gy``): inside where all are >= 0."""
+    return [
+        lambda v: v[3] + v[2], lambda v: v[3] - v[2],
+        lambda v: gx * v[3] - v[0], lambda v: gx * v[3] + v[0],
+        lambda v: gy * v[3] - v[1], lambda v: gy * v[3] + v[1],
+    ]
+
+
 def clip_polygon(poly, gx, gy):
     """Sutherland-Hodgman in homogeneous coordinates, float64.
 
@@ -291,13 +308,8 @@ def clip_polygon(poly, gx, gy):
     parameter is small and exact enough even when the outside endpoint is enormous
     (1e300): interpolating from the far end would cancel catastrophically.
     """
-    planes = [
-        lambda v: v[3] + v[2], lambda v: v[3] - v[2],
-        lambda v: gx * v[3] - v[0], lambda v: gx * v[3] + v[0],
-        lambda v: gy * v[3] - v[1], lambda v: gy * v[3] + v[1],
-    ]
     with np.errstate(over="ignore", invalid="ignore"):
-        return _sutherland_hodgman(poly, planes)
+        return _sutherland_hodgman(poly, clip_planes(gx, gy))
 
 
 def _sutherland_hodgman(poly, planes):

@@ -20,9 +20,11 @@ import numpy as np
 import pytest
 from kernel_helpers import (
     assert_planes_equal,
+    clip_planes,
     clip_reference,
     full_state,
     guard,
+    kernel_batch,
     kernel_framebuffer,
     planes_of,
     render_naive,
@@ -30,7 +32,6 @@ from kernel_helpers import (
     winding_numbers,
 )
 
-from vgxsim.batch import CommandBatch
 from vgxsim.geometry.pipeline import Viewing, draw_lines, draw_points, draw_triangles
 from vgxsim.reference.naive import line_pixels
 from vgxsim.state.raster import BF_MSA, BF_SA, CMP_ALWAYS, CMP_LEQUAL, OP_INCR
@@ -59,9 +60,9 @@ def timed(fn, *args, **kw):
     return out
 
 
-def new_batch(double=False):
+def new_batch(double=False, mode="span"):
     fb = kernel_framebuffer(W, H, double=double, zbits=24, stencil=8)
-    return fb, CommandBatch(fb)
+    return fb, kernel_batch(fb, mode)
 
 
 # ------------------------------------------------------------ window-space path
@@ -88,9 +89,7 @@ def test_window_nonfinite_triangles_are_dropped():
         tris = rng.integers(0, n, (30, 3))
         flat = col[tris[:, 2]]
         for mode in ("span", "general", "edge"):
-            fb, batch = new_batch()
-            batch.general_only = mode == "general"
-            batch.edge_mode = mode == "edge"
+            fb, batch = new_batch(mode=mode)
             timed(batch.add_window_triangles, xw, yw, zw, col, tris, rs, flat_col=flat)
             timed(batch.flush)
             good = [t for t in tris if not np.isin(t, bad).any()]
@@ -143,9 +142,7 @@ def test_window_enormous_depth_keeps_coverage(big):
 
 
 def clip_draw(clip, tris, subpixel=True, mode="span"):
-    fb, batch = new_batch()
-    batch.general_only = mode == "general"
-    batch.edge_mode = mode == "edge"
+    fb, batch = new_batch(mode=mode)
     rs = full_state(W, H, subpixel=subpixel, **COUNT)
     view = Viewing(np.eye(4), VIEWPORT, DEPTH)
     timed(draw_triangles, batch, rs, view, None, None, np.asarray(tris, np.int64),
@@ -245,13 +242,8 @@ def reference_line(a, b, subpixel):
 
 
 def _clip_segment(a, b, gx, gy):
-    planes = [
-        lambda v: v[3] + v[2], lambda v: v[3] - v[2],
-        lambda v: gx * v[3] - v[0], lambda v: gx * v[3] + v[0],
-        lambda v: gy * v[3] - v[1], lambda v: gy * v[3] + v[1],
-    ]
     with np.errstate(over="ignore", invalid="ignore"):
-        for dist in planes:
+        for dist in clip_planes(gx, gy):
             da, db = dist(a), dist(b)
             if da < 0 and db < 0:
                 return None

@@ -15,9 +15,8 @@ import math
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from kernel_helpers import clip_reference, full_state, kernel_framebuffer
+from kernel_helpers import clip_reference, full_state, kernel_batch, kernel_framebuffer
 
-from vgxsim.batch import CommandBatch
 from vgxsim.geometry.pipeline import Viewing, draw_triangles
 from vgxsim.geometry.transform import frustum, perspective, translation
 from vgxsim.reference.naive import GD_ZMAX, GD_ZMIN
@@ -63,9 +62,7 @@ def reference(clip_tri, viewport=VIEWPORT):
 
 def kernel_count(obj, tris, mvp, subpixel, mode="span"):
     fb = kernel_framebuffer(W, H, double=False, zbits=24, stencil=8)
-    batch = CommandBatch(fb)
-    batch.general_only = mode == "general"
-    batch.edge_mode = mode == "edge"
+    batch = kernel_batch(fb, mode)
     rs = full_state(W, H, stencil=True, sfunc=CMP_ALWAYS, spass=OP_INCR, wmpack=0,
                     subpixel=subpixel)
     view = Viewing(mvp, VIEWPORT, DEPTH)

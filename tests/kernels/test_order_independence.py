@@ -7,9 +7,8 @@ import itertools
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from kernel_helpers import full_state, kernel_framebuffer
+from kernel_helpers import full_state, kernel_batch, kernel_framebuffer
 
-from vgxsim.batch import CommandBatch
 from vgxsim.reference.naive import GD_ZMAX, GD_ZMIN
 from vgxsim.state.raster import CMP_ALWAYS, CMP_EQUAL, CMP_LEQUAL, OP_INCR
 
@@ -28,9 +27,7 @@ def draw(tris, rs, mode="span", fb=None):
     """Draw triangles given as lists of (x, y, z, rgba) vertices; returns the fb."""
     if fb is None:
         fb = kernel_framebuffer(W, H, double=False, zbits=24, stencil=8)
-    batch = CommandBatch(fb)
-    batch.general_only = mode == "general"
-    batch.edge_mode = mode == "edge"
+    batch = kernel_batch(fb, mode)
     for tri in tris:
         v = np.array([[p[0], p[1], p[2]] for p in tri], np.float64)
         col = np.array([p[3] for p in tri], np.float64)

@@ -20,9 +20,15 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from kernel_helpers import area2, full_state, kernel_framebuffer, snap_point, winding_numbers
+from kernel_helpers import (
+    area2,
+    full_state,
+    kernel_batch,
+    kernel_framebuffer,
+    snap_point,
+    winding_numbers,
+)
 
-from vgxsim.batch import CommandBatch
 from vgxsim.kernels.raster import coverage_mask_edge, coverage_mask_scanline
 from vgxsim.kernels.setup import setup_triangles
 from vgxsim.state.raster import CMP_ALWAYS, OP_INCR
@@ -41,9 +47,7 @@ COUNT_STATES = {
 def count_coverage(verts, tris, subpixel, how="pass", mode="span", w=W, h=H):
     """Stencil INCR count of triangles given in float window coordinates."""
     fb = kernel_framebuffer(w, h, double=False, zbits=24, stencil=8)
-    batch = CommandBatch(fb)
-    batch.general_only = mode == "general"
-    batch.edge_mode = mode == "edge"
+    batch = kernel_batch(fb, mode)
     rs = full_state(w, h, subpixel=subpixel, **COUNT_STATES[how])
     v = np.asarray(verts, np.float64)
     batch.add_window_triangles(v[:, 0], v[:, 1], np.zeros(len(v)), None,
