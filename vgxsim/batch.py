@@ -31,15 +31,18 @@ from vgxsim.state.raster import FLAT, ROW, ROW_SIZE, RasterState
 
 __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL"]
 
-# Bands are 2**shift rows: 32 to 256, about two bands per thread.  Tall bands keep
-# the triangle records a band reads dense in memory (many small triangles are
-# latency-bound on those reads); at least two bands per thread balance the load.
+# Bands are 2**shift rows, 32 to 256.  Tall bands keep the triangle records a band
+# reads dense in memory (many small triangles are latency-bound on those reads);
+# with several threads, more bands balance the load.
 MIN_BAND_SHIFT, MAX_BAND_SHIFT = 5, 8
 
 
 def band_shift(height: int, nthreads: int) -> int:
-    """Rows per band (as a shift) for a window height and thread count."""
-    rows = max(1, height // (2 * max(1, nthreads)))
+    """Rows per band (as a shift) for a window height and thread count: one thread
+    takes tall bands; several threads get about eight bands each, handed out
+    dynamically, so a scene whose work sits in a few rows still keeps them all busy."""
+    per = 1 if nthreads <= 1 else 8 * nthreads
+    rows = max(1, height // per)
     return max(MIN_BAND_SHIFT, min(MAX_BAND_SHIFT, rows.bit_length() - 1))
 MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
 
@@ -274,9 +277,10 @@ class CommandBatch:
         else:
             # The kernel releases the GIL: plain threads give band parallelism without
             # Numba's parallel=True compile cost (a large part of cold start).
+            # One task per band (render_bands(b, nbands) renders band b alone): the
+            # pool hands bands to whichever thread is free.
             pool = threads.pool(nthreads)
-            futures = [pool.submit(render_bands, tid, nthreads, *args)
-                       for tid in range(nthreads)]
+            futures = [pool.submit(render_bands, b, nbands, *args) for b in range(nbands)]
             for f in futures:
                 f.result()
         self.flushes += 1

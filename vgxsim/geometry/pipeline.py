@@ -60,7 +60,9 @@ def _tame(clip_v: np.ndarray) -> np.ndarray:
     rare vertex with a component beyond 1e300 by its largest magnitude keeps the
     plane distances of the clipper (``gx * w - x``) finite.
     """
-    big = np.abs(clip_v).max(axis=1) if clip_v.shape[0] else np.zeros(0)
+    if clip_v.shape[0] == 0 or np.abs(clip_v).max() <= HUGE:
+        return clip_v  # the usual case: one reduction, no copy
+    big = np.abs(clip_v).max(axis=1)
     rows = np.isfinite(big) & (big > HUGE)
     if rows.any():
         clip_v = clip_v.copy()

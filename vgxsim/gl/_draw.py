@@ -74,8 +74,13 @@ def coords(name: str, args: tuple, n: int, integer: bool = False) -> tuple[float
     no place on the screen; use w = 0 for points at infinity).
     """
     seq = args
-    if len(args) == 1 and type(args[0]) in (tuple, list):
-        seq = args[0]
+    if len(args) == 1:
+        a0 = args[0]
+        if type(a0) in (tuple, list):
+            seq = a0
+        elif type(a0) is np.ndarray and a0.ndim == 1 and a0.dtype.kind == "f" and (
+                not integer):
+            seq = a0.tolist()  # numpy rows (library users, the 1991 example): floats
     if len(seq) == n:
         # Fast path for the common call with plain Python numbers.
         if integer:
