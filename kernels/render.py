@@ -36,6 +36,9 @@ from .fragment import (
     S_BLEND_SF,
     S_DRAW_BACK,
     S_DRAW_FRONT,
+    S_SFUNC,
+    S_SMASK,
+    S_SREF,
     S_SX0,
     S_SX1,
     S_SY0,
@@ -225,6 +228,46 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
     gdx = t_col[t, 1, 1]
     bdx = t_col[t, 2, 1]
     adx = t_col[t, 3, 1]
+    if ztest and blend != 2:
+        # Branch-free form for the common passes (z test on, replace or add blend;
+        # Heidmann's ambient and lit passes): every pixel computes everything and the
+        # writes select old or new values, so LLVM can vectorize the loop.
+        sfunc = st[S_SFUNC]
+        smask = st[S_SMASK]
+        sref = st[S_SREF] & smask
+        slt = (sfunc & 1) != 0
+        seq = (sfunc & 2) != 0
+        sgt = (sfunc & 4) != 0
+        add = blend == 1
+        if stest:
+            for x in range(xl, xr + 1):
+                ux = np.uintp(x)
+                sv = np.int64(srow[ux]) & smask
+                sok = (slt & (sref < sv)) | (seq & (sref == sv)) | (sgt & (sref > sv))
+                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                zb = np.int64(zrow[ux])
+                ok = sok & ((lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb)))
+                zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+                dx = x - x0
+                src = (round_c(ra + rdx * dx) | (round_c(ga + gdx * dx) << 8)
+                       | (round_c(ba + bdx * dx) << 16) | (round_c(aa + adx * dx) << 24))
+                dst = np.int64(buf[ux])
+                out = add_sat(src, dst) if add else src
+                buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+        else:
+            for x in range(xl, xr + 1):
+                ux = np.uintp(x)
+                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                zb = np.int64(zrow[ux])
+                ok = (lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))
+                zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+                dx = x - x0
+                src = (round_c(ra + rdx * dx) | (round_c(ga + gdx * dx) << 8)
+                       | (round_c(ba + bdx * dx) << 16) | (round_c(aa + adx * dx) << 24))
+                dst = np.int64(buf[ux])
+                out = add_sat(src, dst) if add else src
+                buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+        return
     for x in range(xl, xr + 1):
         ux = np.uintp(x)
         if stest and spass[srow[ux]] == 0:
