@@ -205,3 +205,37 @@ def test_cmode_lighting_keeps_the_index(win):
     ctx.draw_arrays("polygon", SQUARE, normals=np.tile([0.0, 0.0, 1.0], (4, 1)))
     ctx.flush()
     assert np.all(ctx.fb.front[2:6, 2:6] == 5)
+
+
+def test_two_sided_lighting_lights_back_faces_with_backmaterial(gl_window):
+    """TWOSIDE: a clockwise (back-facing) square facing away from the light is lit
+    from the back with the BACKMATERIAL (lmdef(3G)); without TWOSIDE it gets only
+    the ambient terms.  Hand computation: directional light from +z, LCOLOR 1, the
+    square's normal is -z (facing away); flipped, N.L = 1, so the back colour is
+    lmodel ambient 0.2 * back ambient 0.2 + diffuse (0, 0.5, 0) = (0.04, 0.54, 0.04).
+    Without TWOSIDE the front material sees N.L < 0: 0.2 * 0.2 = 0.04 each."""
+    import vgxsim.gl as gl
+
+    ctx = gl_window(8, 8, stencil=0)
+    gl.lmdef(gl.DEFMATERIAL, 1, [gl.DIFFUSE, 0.5, 0.0, 0.0, gl.AMBIENT, 0.2, 0.2, 0.2,
+                                  gl.LMNULL])
+    gl.lmdef(gl.DEFMATERIAL, 2, [gl.DIFFUSE, 0.0, 0.5, 0.0, gl.AMBIENT, 0.2, 0.2, 0.2,
+                                  gl.LMNULL])
+    gl.lmdef(gl.DEFLIGHT, 1, [gl.POSITION, 0.0, 0.0, 1.0, 0.0, gl.LMNULL])
+    gl.lmdef(gl.DEFLMODEL, 1, [gl.TWOSIDE, 1.0, gl.LMNULL])
+    gl.lmdef(gl.DEFLMODEL, 2, [gl.TWOSIDE, 0.0, gl.LMNULL])
+    gl.lmbind(gl.MATERIAL, 1)
+    gl.lmbind(gl.BACKMATERIAL, 2)
+    gl.lmbind(gl.LIGHT0, 1)
+    results = {}
+    for model in (1, 2):
+        gl.lmbind(gl.LMODEL, model)
+        gl.bgnpolygon()
+        gl.n3f(0.0, 0.0, -1.0)
+        for v in ((0, 0, 0), (0, 7, 0), (7, 7, 0), (7, 0, 0)):  # clockwise on screen
+            gl.v3f(v)
+        gl.endpolygon()
+        results[model] = ctx.read_rgba()[3, 3, :3].astype(int)
+    expect = [round(0.04 * 255), round(0.54 * 255), round(0.04 * 255)]
+    assert np.array_equal(results[1], expect)
+    assert np.array_equal(results[2], [round(0.04 * 255)] * 3)

@@ -111,8 +111,9 @@ def lmbind(target: int, index: int) -> None:
     (lmbind(3G)); index 0 unbinds.  Binding an undefined index is an error.
 
     A light is transformed to eye space here, by the current modelview.
-    BACKMATERIAL is stored; two-sided lighting (TWOSIDE) is not applied by the
-    per-vertex stage yet.
+    With a lighting model whose TWOSIDE is set, back-facing polygons are lit from
+    the back (flipped normal) with the BACKMATERIAL when one is bound, else with the
+    front material (lmdef(3G)).
     """
     args = (target, index)
     ctx = current("lmbind", args)

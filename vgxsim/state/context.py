@@ -150,11 +150,14 @@ class Context:
         lights = tuple(entry for _slot, (_i, entry) in sorted(self.bound["lights"].items()))
         override = self.lmcolor_mode if (self.lmcolor_mode not in (0, 6)
                                          and self.lmcolor_set) else None
+        back = self.bound.get("backmaterial", 0)
         return (self.matrices.modelview_matrix(), self.matrices.normal_matrix(),
                 self.lighting.material(self.bound["material"]),
-                self.lighting.lmodel(self.bound["lmodel"]), lights, override)
+                self.lighting.lmodel(self.bound["lmodel"]), lights, override,
+                self.lighting.material(back) if back else None)
 
-    def shade_vertices(self, obj, normals, colours, lit, snapshot=None) -> np.ndarray:
+    def shade_vertices(self, obj, normals, colours, lit, snapshot=None,
+                       back: bool = False) -> np.ndarray:
         """Per-vertex colour: lit vertices through the IRIS lighting equation.
 
         Parameters
@@ -163,6 +166,9 @@ class Context:
         colours : ndarray, shape (N, 4); lit : ndarray, shape (N,), bool
         snapshot : tuple, optional
             A :meth:`lighting_snapshot` (default: the current lighting state).
+        back : bool
+            Light the back side (two-sided lighting: flipped normals and the
+            BACKMATERIAL if one is bound, lmdef(3G) TWOSIDE).
 
         Returns
         -------
@@ -174,14 +180,16 @@ class Context:
         snap = self.lighting_snapshot() if snapshot is None else snapshot
         if snap is None or not lit.any():
             return out
-        mv, nmat, mat, lm, lights, override_mode = snap
+        mv, nmat, mat, lm, lights, override_mode, back_mat = snap
         eye = apply(obj[lit], mv)
         pos = eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4])
         nrm = apply(normals[lit], nmat)
         override = None
         if override_mode is not None:
             override = (override_mode, np.asarray(colours, np.float64)[lit])
-        out[lit] = shade(pos, nrm, mat, list(lights), lm, color_override=override)
+        facing = np.ones(pos.shape[0], bool) if back else None
+        out[lit] = shade(pos, nrm, mat, list(lights), lm, back_material=back_mat,
+                         facing=facing, color_override=override)
         return out
 
     @property
@@ -229,6 +237,18 @@ class Context:
                                           else np.zeros((p[0].shape[0], 3)) for p in parts])
                 lit = np.concatenate([p[3] for p in parts])
                 rgba = self.shade_vertices(obj, normals, cols, lit, snapshot=snap)
+                if snap[3].twoside:
+                    # Two-sided lighting: back-facing triangles take colours lit from
+                    # the back (flipped normal, BACKMATERIAL); vertices are duplicated
+                    # so a vertex shared by a front and a back face gets both.
+                    back_rgba = self.shade_vertices(obj, normals, cols, lit, snapshot=snap,
+                                                    back=True)
+                    backs = _back_facing(apply(obj, mvp), tris)
+                    n = obj.shape[0]
+                    obj = np.concatenate([obj, obj])
+                    rgba = np.concatenate([rgba, back_rgba])
+                    tris = np.where(backs[:, None], tris + n, tris)
+                    prov = np.where(backs, prov + n, prov)
             else:
                 rgba = np.array(cols, dtype=np.float64)
         flat = None if rgba is None else rgba[prov]
@@ -418,6 +438,19 @@ class Context:
         return {1: "front", 2: "back"}.get(self.readsource, "auto")
 
 
+def _back_facing(clip: np.ndarray, tris: np.ndarray) -> np.ndarray:
+    """Per triangle, whether it is clockwise in window coordinates (back-facing).
+
+    The sign of det[x y w] of the clip-space vertices times the sign of w0*w1*w2 is
+    the sign of the window-space area (the viewport scales x and y positively).
+    """
+    a, b, c = clip[tris[:, 0]], clip[tris[:, 1]], clip[tris[:, 2]]
+    det = (a[:, 0] * (b[:, 1] * c[:, 3] - b[:, 3] * c[:, 1])
+           - a[:, 1] * (b[:, 0] * c[:, 3] - b[:, 3] * c[:, 0])
+           + a[:, 3] * (b[:, 0] * c[:, 1] - b[:, 1] * c[:, 0]))
+    return det * np.sign(a[:, 3] * b[:, 3] * c[:, 3]) < 0
+
+
 def _same_key(a: tuple, b: tuple) -> bool:
     """Deferral keys match: same objects (matrices and snapshots are immutable)."""
     rs_a, mvp_a, vp_a, depth_a, snap_a = a
@@ -426,7 +459,7 @@ def _same_key(a: tuple, b: tuple) -> bool:
         return False
     if snap_a is None or snap_b is None:
         return snap_a is snap_b
-    if len(snap_a[4]) != len(snap_b[4]) or snap_a[5] != snap_b[5]:
+    if len(snap_a[4]) != len(snap_b[4]) or snap_a[5] != snap_b[5] or snap_a[6] is not snap_b[6]:
         return False
     return all(x is y for x, y in zip(snap_a[:4], snap_b[:4], strict=True)) and all(
         x is y for x, y in zip(snap_a[4], snap_b[4], strict=True))
