@@ -118,13 +118,18 @@ def clip_triangles(v, attr, tris, gx, gy):
             if code[a] == 0xFF or code[b] == 0xFF or code[c] == 0xFF:
                 continue
             nclip += 1
-    out_v = np.empty((nv + nclip * MAX_POLY, 4), dtype=np.float64)
-    out_attr = np.empty((nv + nclip * MAX_POLY, k), dtype=np.float64)
-    for i in range(nv):
-        for q in range(4):
-            out_v[i, q] = v[i, q]
-        for q in range(k):
-            out_attr[i, q] = attr[i, q]
+    if nclip == 0:
+        # Nothing to clip (the usual case): the input vertices are the output ones.
+        out_v = v
+        out_attr = attr
+    else:
+        out_v = np.empty((nv + nclip * MAX_POLY, 4), dtype=np.float64)
+        out_attr = np.empty((nv + nclip * MAX_POLY, k), dtype=np.float64)
+        for i in range(nv):
+            for q in range(4):
+                out_v[i, q] = v[i, q]
+            for q in range(k):
+                out_attr[i, q] = attr[i, q]
     out_tris = np.empty((nt + nclip * (MAX_POLY - 3), 3), dtype=np.int64)
     out_src = np.empty(nt + nclip * (MAX_POLY - 3), dtype=np.int64)
     poly = np.empty((MAX_POLY, 4 + k), dtype=np.float64)

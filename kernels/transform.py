@@ -29,6 +29,13 @@ def transform_points(p, m):
     n, k = p.shape
     j = m.shape[1]
     out = np.empty((n, j), dtype=np.float64)
+    if k == 4 and j == 4:
+        # The usual 4x4 case, unrolled (same order of operations as below).
+        for i in range(n):
+            p0, p1, p2, p3 = p[i, 0], p[i, 1], p[i, 2], p[i, 3]
+            for c in range(4):
+                out[i, c] = ((p0 * m[0, c] + p1 * m[1, c]) + p2 * m[2, c]) + p3 * m[3, c]
+        return out
     for i in range(n):
         for c in range(j):
             acc = p[i, 0] * m[0, c]
