@@ -276,3 +276,23 @@ def test_large_mesh_replays_identically(ctx):
 
     (img_a, _), (img_b, _) = same_in_object(ctx, draw)
     assert np.array_equal(img_a, img_b)
+
+
+def test_draw_arrays_copies_caller_arrays_before_deferring():
+    """Immediate-mode triangles are queued for a combined geometry pass; a library
+    caller that reuses its vertex array right after draw_arrays must not change what
+    was drawn."""
+    import numpy as np
+
+    from vgxsim.geometry.transform import orthographic
+    from vgxsim.state.context import Context
+
+    ctx = Context(8, 8)
+    ctx.matrices.load_projection(orthographic(-0.5, 7.5, -0.5, 7.5, -1.0, 1.0))
+    obj = np.array([[0, 0, 0, 1], [7, 0, 0, 1], [7, 7, 0, 1], [0, 7, 0, 1]], float)
+    col = np.ones((4, 4))
+    ctx.draw_arrays("polygon", obj, col)
+    obj[:] = 100.0  # reuse the arrays before the batch is flushed
+    col[:] = 0.0
+    img = ctx.read_rgba()
+    assert (img[1:6, 1:6, :3] == 255).all()

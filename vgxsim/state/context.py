@@ -21,7 +21,7 @@ from vgxsim.state import colormap
 from vgxsim.state.colormap import default_colormap
 from vgxsim.state.matrices import MatrixState
 from vgxsim.state.planes import ZMAX, ZMIN, Framebuffer, PlaneConfig, unpack_rgba
-from vgxsim.state.raster import needs_colour
+from vgxsim.state.raster import FLAT, needs_colour
 from vgxsim.state.registers import RasterRegisters
 
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
@@ -226,12 +226,17 @@ class Context:
         pend, self._pending = self._pending, None
         rs, mvp, viewport, depth, snap = pend["key"]
         parts = pend["parts"]
-        obj = np.concatenate([p[0] for p in parts])
-        tris = np.concatenate([p[4] for p in parts])
-        prov = np.concatenate([p[5] for p in parts])
+
+        def joined(i):
+            # One part (a mesh drawn in one call) needs no concatenation copy.
+            return parts[0][i] if len(parts) == 1 else np.concatenate([p[i] for p in parts])
+
+        obj = joined(0)
+        tris = joined(4)
+        prov = joined(5)
         rgba = None
         if parts[0][1] is not None:
-            cols = np.concatenate([p[1] for p in parts])
+            cols = joined(1)
             if snap is not None:
                 normals = np.concatenate([p[2] if p[2] is not None
                                           else np.zeros((p[0].shape[0], 3)) for p in parts])
@@ -250,8 +255,8 @@ class Context:
                     tris = np.where(backs[:, None], tris + n, tris)
                     prov = np.where(backs, prov + n, prov)
             else:
-                rgba = np.array(cols, dtype=np.float64)
-        flat = None if rgba is None else rgba[prov]
+                rgba = cols  # already a private float64 copy (draw_arrays)
+        flat = None if (rgba is None or rs.shademodel != FLAT) else rgba[prov]
         draw_triangles(self._batch, rs, Viewing(mvp, viewport, depth), obj, rgba, tris, flat)
 
     # -- drawing ---------------------------------------------------------------------
@@ -291,6 +296,8 @@ class Context:
         elif obj.shape[1] == 2:
             obj = np.concatenate([obj, np.zeros((obj.shape[0], 1)),
                                   np.ones((obj.shape[0], 1))], axis=1)
+        else:
+            obj = obj.copy()  # drawing is deferred: keep the caller free to reuse its array
         n = obj.shape[0]
         rs = self.raster.snapshot()
         cols = None
@@ -306,7 +313,7 @@ class Context:
             tris, prov = self._triangles_of(kind, n, obj, view, swaps, indices, provoking)
             self._defer_triangles(
                 obj, None if cols is None else np.array(cols, dtype=np.float64),
-                np.asarray(normals, np.float64) if lighting else None, litm, tris, prov)
+                np.array(normals, np.float64) if lighting else None, litm, tris, prov)
             return
         rgba = None
         if cols is not None:
