@@ -34,6 +34,18 @@ def _edge(xi, yi, xj, yj, out, e):
     out[e, 2] = dy * xi - dx * yi + bias - 1
 
 
+DEAD_Y0 = 1 << 40  # first row of a dead record: beyond any band
+
+
+@inline
+def _dead(t_box, t_state, n, state):
+    t_box[n, 0] = 1
+    t_box[n, 1] = 0
+    t_box[n, 2] = DEAD_Y0
+    t_box[n, 3] = -1
+    t_state[n] = state
+
+
 @inline
 def _ceil_div_one(v):
     return -((-v) // ONE)
@@ -75,18 +87,20 @@ def setup_triangles(
     Returns
     -------
     int
-        New number of used slots.
+        New number of used slots: ``offset + Nt``.  Every input triangle gets its
+        slot (so chunks of one call can be set up by different threads); a culled,
+        zero-area or pixel-less triangle gets a dead record (``DEAD_Y0`` > its last
+        row) that binning never places in a band.
     """
     n = offset
     for t in range(tris.shape[0]):
         i0, i1, i2 = tris[t, 0], tris[t, 1], tris[t, 2]
         x0, y0, x1, y1, x2, y2 = xf[i0], yf[i0], xf[i1], yf[i1], xf[i2], yf[i2]
         area2 = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
-        if area2 == 0:
-            continue
-        if area2 < 0 and (cull & CULL_BACK) != 0:
-            continue
-        if area2 > 0 and (cull & CULL_FRONT) != 0:
+        if (area2 == 0 or (area2 < 0 and (cull & CULL_BACK) != 0)
+                or (area2 > 0 and (cull & CULL_FRONT) != 0)):
+            _dead(t_box, t_state, n, state)
+            n += 1
             continue
         # Canonical order: ascending (y, x).
         a, b, c = i0, i1, i2
@@ -114,7 +128,9 @@ def setup_triangles(
         t_box[n, 2] = ay // ONE + (1 if ay % ONE != 0 else 0)
         t_box[n, 3] = cy // ONE
         if t_box[n, 0] > t_box[n, 1] or t_box[n, 2] > t_box[n, 3]:
-            continue  # no pixel centre inside the bounding box
+            _dead(t_box, t_state, n, state)  # no pixel centre inside the bounding box
+            n += 1
+            continue
         fx0 = ax / ONE
         fy0 = ay / ONE
         dxb = bx / ONE - fx0

@@ -44,6 +44,7 @@ def band_shift(height: int, nthreads: int) -> int:
     per = 1 if nthreads <= 1 else 8 * nthreads
     rows = max(1, height // per)
     return max(MIN_BAND_SHIFT, min(MAX_BAND_SHIFT, rows.bit_length() - 1))
+PARALLEL_SETUP = 20_000  # triangles in one call above which set-up runs on all threads
 MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
 
 
@@ -70,33 +71,39 @@ class CommandBatch:
         self.edge_mode = False  # test switch: edge-function rasterizer
         self.general_only = False  # test switch: no fast span paths
         self.flushes = 0
+        self._allocate()
         self._reset()
 
-    def _reset(self) -> None:
-        self._state_index: dict[RasterState, int] = {}
-        self._state_rows: list[np.ndarray] = []
-        self.nprims = 0
+    def _allocate(self) -> None:
+        """The batch's arrays, grown on demand and kept across flushes (a frame of
+        many small triangles would otherwise re-allocate and re-fault tens of MB)."""
         self.p_kind = np.zeros(64, np.int64)
         self.p_ref = np.zeros(64, np.int64)
         self.p_y0 = np.zeros(64, np.int64)
         self.p_y1 = np.zeros(64, np.int64)
-        self.ntris = 0
         self.t_edge = np.zeros((64, 3, 3), np.int64)
         self.t_box = np.zeros((64, 4), np.int64)
         self.t_z = np.zeros((64, 5), np.float64)
         self.t_zlim = np.zeros((64, 2), np.int64)
         self.t_col = np.zeros((64, 4, 3), np.float64)
         self.t_state = np.zeros(64, np.int32)
-        self.nfrags = 0
         self.f_xy = np.zeros((64, 2), np.int64)
         self.f_z = np.zeros(64, np.int64)
         self.f_rgba = np.zeros(64, np.int64)
-        self.nruns = 0
         self.r_range = np.zeros((16, 2), np.int64)
         self.r_state = np.zeros(16, np.int64)
-        self.nclears = 0
         self.c_vals = np.zeros((16, 4), np.int64)
         self.c_state = np.zeros(16, np.int64)
+
+    def _reset(self) -> None:
+        """Empty the batch (counters only; the arrays keep their capacity)."""
+        self._state_index: dict[RasterState, int] = {}
+        self._state_rows: list[np.ndarray] = []
+        self.nprims = 0
+        self.ntris = 0
+        self.nfrags = 0
+        self.nruns = 0
+        self.nclears = 0
 
     # -- state ------------------------------------------------------------------
     def state_index(self, rs: RasterState) -> int:
@@ -147,7 +154,8 @@ class CommandBatch:
         Returns
         -------
         int
-            Number of triangles queued (after culling and zero-area removal).
+            Number of triangle slots used (culled and zero-area triangles keep a dead
+            slot that is never rasterized).
         """
         nt = tris.shape[0]
         if nt == 0:
@@ -165,10 +173,22 @@ class CommandBatch:
         self.t_col = _grow(self.t_col, end)
         self.t_state = _grow(self.t_state, end)
         start = self.ntris
-        self.ntris = setup_triangles(
-            xf, yf, zw, colv, tris, src, flatv, s, rs.cull, flat, want_colour,
-            self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state, start,
-        )
+        out = (self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state)
+        nthreads = threads.get_threads()
+        if nthreads > 1 and nt >= PARALLEL_SETUP:
+            # Every triangle owns its slot (dead records for culled ones), so chunks
+            # of one call set up in parallel and the drawing order is unchanged.
+            cuts = np.linspace(0, nt, nthreads + 1).astype(np.int64)
+            pool = threads.pool(nthreads)
+            futures = [pool.submit(setup_triangles, xf, yf, zw, colv, tris[a:b], src[a:b],
+                                   flatv, s, rs.cull, flat, want_colour, *out, start + a)
+                       for a, b in zip(cuts[:-1], cuts[1:], strict=True) if b > a]
+            for f in futures:
+                f.result()
+            self.ntris = start + nt
+        else:
+            self.ntris = setup_triangles(xf, yf, zw, colv, tris, src, flatv, s, rs.cull, flat,
+                                         want_colour, *out, start)
         refs = np.arange(start, self.ntris, dtype=np.int64)
         self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
                         self.t_box[start:self.ntris, 3])

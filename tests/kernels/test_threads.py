@@ -140,3 +140,36 @@ def test_any_thread_count_matches_naive(n, restore_threads):
     for mode in ("span", "edge"):
         got = render_kernels(cmds, w, h, init=init, mode=mode, **cfg)
         assert_planes_equal(got, _NAIVE["want"], f"{n} threads, {mode}")
+
+
+def test_parallel_setup_of_one_large_call_equals_serial():
+    """A call with more than PARALLEL_SETUP triangles is set up in chunks on worker
+    threads (culled triangles keep dead slots); the planes must equal a serial run."""
+    from vgxsim import threads
+    from vgxsim.batch import PARALLEL_SETUP, CommandBatch
+    from vgxsim.state.planes import Framebuffer, PlaneConfig
+    from vgxsim.state.raster import CULL_BACK, RasterState
+
+    rng = np.random.default_rng(7)
+    n = PARALLEL_SETUP + 5000
+    w, h = 200, 150
+    pts = (rng.uniform([0, 0], [w, h], (n, 1, 2)) + rng.uniform(-4, 4, (n, 3, 2))).reshape(-1, 2)
+    z = rng.uniform(-1e5, 1e5, 3 * n)
+    col = rng.random((3 * n, 4))
+    tris = np.arange(3 * n).reshape(n, 3)
+    rs = RasterState(scissor=(0, w - 1, 0, h - 1), zbuffer=True, draw_front=True,
+                     cull=CULL_BACK, stencil=True, sfunc=7, szpass=3, blend_sf=1, blend_df=1)
+    planes = []
+    for count in (1, 2):
+        threads.set_threads(count)
+        try:
+            fb = Framebuffer(PlaneConfig(w, h, stencil=8))
+            batch = CommandBatch(fb)
+            batch.add_window_triangles(pts[:, 0], pts[:, 1], z, col, tris, rs)
+            batch.flush()
+        finally:
+            threads.set_threads(None)
+        planes.append((fb.front.copy(), fb.z.copy(), fb.stencil.copy()))
+    for a, b in zip(planes[0], planes[1], strict=True):
+        assert np.array_equal(a, b)
+    assert (planes[0][2] > 0).sum() > 0.3 * w * h  # the scene really drew

@@ -370,7 +370,10 @@ def setup_edges(tri_fixed):
     m = setup_triangles(xf, yf, zw, np.zeros((1, 4)), tris, np.zeros(n, np.int64),
                         np.zeros((1, 4)), 0, 0, True, False,
                         t_edge, t_box, t_z, t_zlim, t_col, t_state, 0)
-    return {int(t_z[k, 0]): (t_edge[k].copy(), t_box[k].copy()) for k in range(m)}
+    # Culled and pixel-less triangles keep their slot as a dead record (first row
+    # beyond last row); only live records carry set-up data.
+    return {int(t_z[k, 0]): (t_edge[k].copy(), t_box[k].copy()) for k in range(m)
+            if t_box[k, 2] <= t_box[k, 3]}
 
 
 def random_triangles(rng, n):
