@@ -178,25 +178,36 @@ def _triangle_rows(
                 if cmp_pass(zfunc, zi, np.int64(zbuf[uy, ux])):
                     zbuf[uy, ux] = wrap_z24(zi)
         else:
-            if colour:
-                ra = t_col[t, 0, 0] + t_col[t, 0, 2] * (y - y0)
-                ga = t_col[t, 1, 0] + t_col[t, 1, 2] * (y - y0)
-                ba = t_col[t, 2, 0] + t_col[t, 2, 2] * (y - y0)
-                aa = t_col[t, 3, 0] + t_col[t, 3, 2] * (y - y0)
-            for x in range(xl, xr + 1):
-                if edge_mode and not covers(edge, x, y):
-                    continue
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                rgba = 0
-                if colour:
-                    dx = x - x0
-                    rgba = (
-                        round_c(ra + t_col[t, 0, 1] * dx)
-                        | (round_c(ga + t_col[t, 1, 1] * dx) << 8)
-                        | (round_c(ba + t_col[t, 2, 1] * dx) << 16)
-                        | (round_c(aa + t_col[t, 3, 1] * dx) << 24)
-                    )
-                fragment(x, y, zi, rgba, st, dv, tab, front, back, zbuf, sten)
+            _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
+                         edge_mode, st, dv, tab, front, back, zbuf, sten)
+
+
+@jit
+def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
+                 edge_mode, st, dv, tab, front, back, zbuf, sten):
+    """The general per-fragment path for one row (any state; the edge-function
+    rasterizer when ``edge_mode``).  Compiled out of line: it is the rare path, and
+    keeping it out of the band kernel shortens that kernel's cold compile."""
+    ra = ga = ba = aa = 0.0
+    if colour:
+        ra = t_col[t, 0, 0] + t_col[t, 0, 2] * (y - y0)
+        ga = t_col[t, 1, 0] + t_col[t, 1, 2] * (y - y0)
+        ba = t_col[t, 2, 0] + t_col[t, 2, 2] * (y - y0)
+        aa = t_col[t, 3, 0] + t_col[t, 3, 2] * (y - y0)
+    for x in range(xl, xr + 1):
+        if edge_mode and not covers(edge, x, y):
+            continue
+        zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+        rgba = 0
+        if colour:
+            dx = x - x0
+            rgba = (
+                round_c(ra + t_col[t, 0, 1] * dx)
+                | (round_c(ga + t_col[t, 1, 1] * dx) << 8)
+                | (round_c(ba + t_col[t, 2, 1] * dx) << 16)
+                | (round_c(aa + t_col[t, 3, 1] * dx) << 24)
+            )
+        fragment(x, y, zi, rgba, st, dv, tab, front, back, zbuf, sten)
 
 
 @inline_ir
@@ -206,19 +217,15 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
     buf = back[y] if st[S_DRAW_BACK] else front[y]
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
-    stest = dv[D_STENCIL] != 0
     zfunc = st[S_ZFUNC]
     lt = (zfunc & 1) != 0
     eq = (zfunc & 2) != 0
     gt = (zfunc & 4) != 0
     blend = dv[D_CBLEND]
-    sf = st[S_BLEND_SF]
-    df = st[S_BLEND_DF]
     wm = st[S_WMPACK] & 0xFFFFFFFF
     keep = ~wm & 0xFFFFFFFF
     zrow = zbuf[y]
     srow = sten[y]
-    spass = tab[2]
     dy = y - y0
     ra = t_col[t, 0, 0] + t_col[t, 0, 2] * dy
     ga = t_col[t, 1, 0] + t_col[t, 1, 2] * dy
@@ -239,7 +246,7 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
         seq = (sfunc & 2) != 0
         sgt = (sfunc & 4) != 0
         add = blend == 1
-        if stest:
+        if dv[D_STENCIL] != 0:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 sv = np.int64(srow[ux]) & smask
@@ -268,6 +275,40 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                 out = add_sat(src, dst) if add else src
                 buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
         return
+    _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
+                      front, back, zbuf, sten)
+
+
+@jit
+def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
+                      front, back, zbuf, sten):
+    """MODE_COLOUR without a z test or with a general blend: per-pixel branches,
+    compiled out of line (the rarer case; keeps the band kernel's compile short)."""
+    buf = back[y] if st[S_DRAW_BACK] else front[y]
+    ztest = dv[D_ZTEST] != 0
+    zwrite = dv[D_ZWRITE] != 0
+    stest = dv[D_STENCIL] != 0
+    zfunc = st[S_ZFUNC]
+    lt = (zfunc & 1) != 0
+    eq = (zfunc & 2) != 0
+    gt = (zfunc & 4) != 0
+    blend = dv[D_CBLEND]
+    sf = st[S_BLEND_SF]
+    df = st[S_BLEND_DF]
+    wm = st[S_WMPACK] & 0xFFFFFFFF
+    keep = ~wm & 0xFFFFFFFF
+    zrow = zbuf[y]
+    srow = sten[y]
+    spass = tab[2]
+    dy = y - y0
+    ra = t_col[t, 0, 0] + t_col[t, 0, 2] * dy
+    ga = t_col[t, 1, 0] + t_col[t, 1, 2] * dy
+    ba = t_col[t, 2, 0] + t_col[t, 2, 2] * dy
+    aa = t_col[t, 3, 0] + t_col[t, 3, 2] * dy
+    rdx = t_col[t, 0, 1]
+    gdx = t_col[t, 1, 1]
+    bdx = t_col[t, 2, 1]
+    adx = t_col[t, 3, 1]
     for x in range(xl, xr + 1):
         ux = np.uintp(x)
         if stest and spass[srow[ux]] == 0:
