@@ -4,12 +4,14 @@ Kernels see only numpy arrays and integers, never Python objects; all validation
 happens in the layers above.  Stage by stage:
 
 * :mod:`.options`   -- the one place that sets Numba decorator options;
+* :mod:`.transform` -- vertex transform with a row-independent rounding order;
 * :mod:`.clip`      -- homogeneous clipping, divide, viewport and fixed-point snap;
 * :mod:`.setup`     -- triangle setup: facing, culling, edges, interpolation planes;
 * :mod:`.raster`    -- exact span (scanline) and edge-function coverage;
 * :mod:`.lines`     -- points and lines expanded to fragments;
 * :mod:`.fragment`  -- per-fragment operations in IRIS GL order;
-* :mod:`.render`    -- the parallel band driver that runs a whole batch;
+* :mod:`.render`    -- binning and the band kernel that runs a whole batch (worker
+  threads, see vgxsim/threads.py, each take bands of rows);
 * :mod:`.accum`     -- accumulation-buffer operations.
 
 Only relative imports are used here: this folder must never be importable as a
