@@ -271,6 +271,21 @@ def wrap_z24(zi):
 
 
 @inline
+def pack_rgba(r, g, b, a):
+    """Rounded, clamped 0..255 components packed as 0xAABBGGRR (cpack order)."""
+    return round_c(r) | (round_c(g) << 8) | (round_c(b) << 16) | (round_c(a) << 24)
+
+
+@inline
+def colour_row(t_col, t, dy):
+    """Colour planes of triangle ``t`` at row offset ``dy``: the four values at the
+    plane origin's column and their x gradients (docs/numeric_model.md s. 4)."""
+    return (t_col[t, 0, 0] + t_col[t, 0, 2] * dy, t_col[t, 1, 0] + t_col[t, 1, 2] * dy,
+            t_col[t, 2, 0] + t_col[t, 2, 2] * dy, t_col[t, 3, 0] + t_col[t, 3, 2] * dy,
+            t_col[t, 0, 1], t_col[t, 1, 1], t_col[t, 2, 1], t_col[t, 3, 1])
+
+
+@inline
 def write_z(old, zi, zmask):
     """Masked 24-bit two's-complement z write, sign-extended back to int32."""
     u = ((old & ~zmask) | (zi & zmask)) & Z24_MASK

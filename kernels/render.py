@@ -47,9 +47,10 @@ from .fragment import (
     S_ZFUNC,
     add_sat,
     cmp_pass,
+    colour_row,
     combine,
     fragment,
-    round_c,
+    pack_rgba,
     round_z,
     wrap_z24,
     write_z,
@@ -188,12 +189,7 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour
     """The general per-fragment path for one row (any state; the edge-function
     rasterizer when ``edge_mode``).  Compiled out of line: it is the rare path, and
     keeping it out of the band kernel shortens that kernel's cold compile."""
-    ra = ga = ba = aa = 0.0
-    if colour:
-        ra = t_col[t, 0, 0] + t_col[t, 0, 2] * (y - y0)
-        ga = t_col[t, 1, 0] + t_col[t, 1, 2] * (y - y0)
-        ba = t_col[t, 2, 0] + t_col[t, 2, 2] * (y - y0)
-        aa = t_col[t, 3, 0] + t_col[t, 3, 2] * (y - y0)
+    ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
     for x in range(xl, xr + 1):
         if edge_mode and not covers(edge, x, y):
             continue
@@ -201,12 +197,7 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour
         rgba = 0
         if colour:
             dx = x - x0
-            rgba = (
-                round_c(ra + t_col[t, 0, 1] * dx)
-                | (round_c(ga + t_col[t, 1, 1] * dx) << 8)
-                | (round_c(ba + t_col[t, 2, 1] * dx) << 16)
-                | (round_c(aa + t_col[t, 3, 1] * dx) << 24)
-            )
+            rgba = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
         fragment(x, y, zi, rgba, st, dv, tab, front, back, zbuf, sten)
 
 
@@ -226,15 +217,7 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
     keep = ~wm & 0xFFFFFFFF
     zrow = zbuf[y]
     srow = sten[y]
-    dy = y - y0
-    ra = t_col[t, 0, 0] + t_col[t, 0, 2] * dy
-    ga = t_col[t, 1, 0] + t_col[t, 1, 2] * dy
-    ba = t_col[t, 2, 0] + t_col[t, 2, 2] * dy
-    aa = t_col[t, 3, 0] + t_col[t, 3, 2] * dy
-    rdx = t_col[t, 0, 1]
-    gdx = t_col[t, 1, 1]
-    bdx = t_col[t, 2, 1]
-    adx = t_col[t, 3, 1]
+    ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
     if ztest and blend != 2:
         # Branch-free form for the common passes (z test on, replace or add blend;
         # Heidmann's ambient and lit passes): every pixel computes everything and the
@@ -256,8 +239,7 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                 ok = sok & ((lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb)))
                 zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
-                src = (round_c(ra + rdx * dx) | (round_c(ga + gdx * dx) << 8)
-                       | (round_c(ba + bdx * dx) << 16) | (round_c(aa + adx * dx) << 24))
+                src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
                 dst = np.int64(buf[ux])
                 out = add_sat(src, dst) if add else src
                 buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
@@ -269,8 +251,7 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                 ok = (lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))
                 zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
-                src = (round_c(ra + rdx * dx) | (round_c(ga + gdx * dx) << 8)
-                       | (round_c(ba + bdx * dx) << 16) | (round_c(aa + adx * dx) << 24))
+                src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
                 dst = np.int64(buf[ux])
                 out = add_sat(src, dst) if add else src
                 buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
@@ -300,15 +281,7 @@ def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
     zrow = zbuf[y]
     srow = sten[y]
     spass = tab[2]
-    dy = y - y0
-    ra = t_col[t, 0, 0] + t_col[t, 0, 2] * dy
-    ga = t_col[t, 1, 0] + t_col[t, 1, 2] * dy
-    ba = t_col[t, 2, 0] + t_col[t, 2, 2] * dy
-    aa = t_col[t, 3, 0] + t_col[t, 3, 2] * dy
-    rdx = t_col[t, 0, 1]
-    gdx = t_col[t, 1, 1]
-    bdx = t_col[t, 2, 1]
-    adx = t_col[t, 3, 1]
+    ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
     for x in range(xl, xr + 1):
         ux = np.uintp(x)
         if stest and spass[srow[ux]] == 0:
@@ -321,8 +294,7 @@ def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
             if zwrite:
                 zrow[ux] = wrap_z24(zi)
         dx = x - x0
-        src = (round_c(ra + rdx * dx) | (round_c(ga + gdx * dx) << 8)
-               | (round_c(ba + bdx * dx) << 16) | (round_c(aa + adx * dx) << 24))
+        src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
         dst = np.int64(buf[ux])
         if blend == 0:
             out = src
