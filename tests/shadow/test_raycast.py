@@ -63,10 +63,17 @@ def test_nearest_hit_equals_brute_force(scene):
     idx, t = nearest_hit(o, d, tris)
     tb, _ = intersect(o, d, tris)
     tb = np.where((tb >= 0) & (tb <= 1), tb, np.inf)
-    assert np.array_equal(t, tb.min(axis=1))
+    # the two tests round differently: equal hits, t to rounding
+    assert np.array_equal(np.isfinite(t), np.isfinite(tb.min(axis=1)))
     hit = np.isfinite(t)
+    assert np.allclose(t[hit], tb.min(axis=1)[hit], rtol=1e-12, atol=0)
     assert hit.sum() > 200
-    assert np.array_equal(idx[hit], np.argmin(tb, axis=1)[hit])
+    # the nearest triangle, except where two are hit at the same t to rounding
+    # (cube bottoms lie on the floor's top plane: coplanar overlaps)
+    second = np.sort(tb, axis=1)[:, 1]
+    clear = hit & (second > t * (1 + 1e-12))
+    assert clear.sum() > 0.9 * hit.sum()
+    assert np.array_equal(idx[clear], np.argmin(tb, axis=1)[clear])
     assert np.all(idx[~hit] == -1)
 
 
