@@ -273,14 +273,16 @@ def closest_hits(bvh, origin, direction, t0, t1, r0, r1, out_tri, out_t):
 
 @jit
 def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, active,
-                    lights, far, eps, counts, r0, r1, out_blocked, out_objects, out_layers):
+                    lights, far, offset, counts, r0, r1, out_blocked, out_objects,
+                    out_layers):
     """Per point and light: is the segment to the light blocked, and by how much.
 
-    The segment from point P to light l is ``P + s * (L - P)``, ``eps <= s <= 1 - eps``
-    with ``L`` the light position (w != 0) or, for a directional light (w = 0),
-    ``P + far * unit(x, y, z)`` -- beyond every caster when ``far`` exceeds the
-    scene's diameter.  Triangle ``exclude[r]`` (the one P was found on) is skipped:
-    with ``eps`` this keeps a surface from shadowing itself.
+    The segment from point P to light l is ``P + s * (L - P)`` with ``L`` the light
+    position (w != 0) or, for a directional light (w = 0), ``P + far * unit(x, y, z)``
+    -- beyond every caster when ``far`` exceeds the scene's diameter.  It is cut
+    short by ``offset`` (world units) at both ends: ``s0 <= s <= 1 - s0`` with
+    ``s0 = offset / |L - P|``.  Triangle ``exclude[r]`` (the one P was found on) is
+    skipped: with the offset this keeps a surface from shadowing itself.
 
     Parameters
     ----------
@@ -300,7 +302,7 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
     lights : ndarray, shape (L, 4), float64
         Homogeneous light positions (w = 1 point or spot light, w = 0 directional).
     far : float
-    eps : float
+    offset : float
     counts : bool
         False: only ``out_blocked``, each segment stopping at its first hit (the fast
         path); True: also the counts, from every hit.
@@ -330,8 +332,11 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
                 dx = far * lights[li, 0] / nrm
                 dy = far * lights[li, 1] / nrm
                 dz = far * lights[li, 2] / nrm
-            n = _all_hits(bvh, stack, hits, px, py, pz, dx, dy, dz, eps, 1.0 - eps,
-                          exclude[r], not counts)
+            s0 = offset / np.sqrt(dx * dx + dy * dy + dz * dz)
+            n = 0
+            if s0 < 0.5:
+                n = _all_hits(bvh, stack, hits, px, py, pz, dx, dy, dz, s0, 1.0 - s0,
+                              exclude[r], not counts)
             out_blocked[r, li] = n > 0
             if counts:
                 objs = 0

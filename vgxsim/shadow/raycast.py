@@ -18,14 +18,13 @@ BVH, :mod:`vgxsim.kernels.bvh`):
 * the **visible triangle**: the nearest scene triangle with ``0 <= t <= 1`` (equal t:
   the lowest index), its object and world point;
 * per light, **lit**: the segment from the visible point P to the light meets no
-  caster triangle other than P's own at ``eps <= s <= 1 - eps`` of
-  ``P + s (L - P)`` -- the definition of a hard shadow (article: "The volume of space
-  behind the triangle ... is in shadow").  Point and spot lights use their position
-  (a spot's cone limits its light, not its shadow); a directional light
-  (``w = 0``: IRIS GL's POSITION with w = 0 is a direction toward the light) uses
-  ``L = P + far * unit(direction)``, ``far`` = 4 x the scene's radius about the
-  origin + 1, beyond every caster.  So the offset from P is ``eps |L - P|``: about
-  1e-6 world units for the default scene;
+  caster triangle other than P's own, leaving out the first and last
+  ``eps * R`` world units of it (R: the scene's radius about the origin, at least 1;
+  about 1e-6 units for the default scene) -- the definition of a hard shadow
+  (article: "The volume of space behind the triangle ... is in shadow").  Point and
+  spot lights use their position (a spot's cone limits its light, not its shadow); a
+  directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a direction toward
+  the light) uses ``L = P + (4 R + 1) * unit(direction)``, beyond every caster;
 * per light, **occluders**: how many distinct caster objects that segment crosses;
 * per light, **layers**: how many light-facing caster triangles it crosses (facing:
   ``N . (L - v0) > 0``, as :meth:`Polyhedron.facing`; ``N . direction > 0`` for
@@ -55,8 +54,9 @@ is watertight with a documented tie rule (module docstring of
 :mod:`vgxsim.kernels.raycast`): a ray through a shared edge or vertex of a surface
 crosses it exactly once, through a fold 0 or 2 times.  Degenerate triangles (zero
 cross product, exactly) are never hit.  The segment to the light leaves out P's own
-triangle and the first and last ``eps`` of its length, so neither the receiving
-surface nor the one the light sits on shadows the point.  Vertices may be
+triangle and ``eps * R`` world units at each end (an absolute offset: relative to the
+segment's length it would grow to whole units for far lights), so neither the
+receiving surface nor one the light sits on shadows the point.  Vertices may be
 homogeneous with w = 0 (faces extruded to infinity); w < 0 is refused.
 
 Subpixel snapping (``subpixel=False/True``): every finite vertex that the camera
@@ -439,8 +439,8 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
         Which shadow faces ``crossings`` counts (the lit mask does not depend on it);
         ignored when ``faces`` is given.
     eps : float
-        Shadow segments from the hit point P to the light L count blockers at
-        parameters ``eps <= s <= 1 - eps`` of ``P + s (L - P)``.
+        Shadow segments from the hit point P to the light count no blocker within
+        ``eps * R`` of either end (R: the scene's radius about the origin, >= 1).
     subpixel : bool, optional
         None: exact geometry.  False / True: vertices snapped as the rasterizer does
         under ``subpixel(FALSE)`` / ``subpixel(TRUE)``.
@@ -510,19 +510,20 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     radius = float(np.sqrt(3.0) * max(1.0, np.abs(tris4[..., :3]).max(initial=0.0),
                                        np.abs(np.asarray(cam.eye)).max()))
     far = 4.0 * radius + 1.0
+    offset = float(eps) * radius
     blocked = np.zeros((n, nl), bool)
     occl = np.zeros((n, nl), np.int64)
     layers = np.zeros((n, nl), np.int64)
     pts = np.ascontiguousarray(np.where(hit[:, None], point, 0.0))
     _run(shadow_segments, n, nthreads, caster_tree, tri_obj, len(scene.objects), layer_w,
-         pts, tri_idx, hit, lights, far, float(eps), bool(counts),
+         pts, tri_idx, hit, lights, far, offset, bool(counts),
          (blocked, occl, layers))
     eye_b = np.zeros((1, nl), bool)
     eye_o = np.zeros((1, nl), np.int64)
     eye_l = np.zeros((1, nl), np.int64)
     shadow_segments(caster_tree, tri_obj, len(scene.objects), layer_w,
                     np.asarray(cam.eye, np.float64).reshape(1, 3), np.full(1, -1, np.int64),
-                    np.ones(1, bool), lights, far, float(eps), True, 0, 1, eye_b, eye_o, eye_l)
+                    np.ones(1, bool), lights, far, offset, True, 0, 1, eye_b, eye_o, eye_l)
 
     # 3. shadow-face crossings along the eye rays
     face_tree = scene_bvh(face4, sah=sah)
