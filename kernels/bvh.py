@@ -112,15 +112,18 @@ def _clamped_area(lo0, lo1, lo2, hi0, hi1, hi2, big):
 
 
 @jit
-def build_arrays(tris, usable, leaf_size, sah):
-    """Build the tree (see :data:`BVH`); :func:`vgxsim.shadow.raycast` wraps it.
+def build_arrays(tris, ref_tri, blo, bhi, leaf_size, sah):
+    """Build the tree (see :data:`BVH`) over triangle references.
 
     Parameters
     ----------
     tris : ndarray, shape (T, 3, 4), float64
         Homogeneous vertices, w exactly 0 or 1.
-    usable : ndarray, shape (T,), bool
-        Triangles to put in the tree (the caller drops degenerate ones).
+    ref_tri : ndarray, shape (R,), int64
+        The triangle of each reference; a triangle may have several (one per piece
+        of it, :func:`split_references`), each with its own box.
+    blo, bhi : ndarray, shape (R, 3), float64
+        Box of each reference.
     leaf_size : int
         Largest leaf the builder aims for.
     sah : bool
@@ -129,26 +132,31 @@ def build_arrays(tris, usable, leaf_size, sah):
     Returns
     -------
     lo, hi, first, count, tris, index
-        The fields of :data:`BVH`; no nodes at all when no triangle is usable.
+        The fields of :data:`BVH` (``tris`` holds one copy of the triangle per
+        reference); no nodes at all when there is no reference.
     """
-    blo, bhi, cen, finite = triangle_bounds(tris)
-    n_all = tris.shape[0]
-    n = 0
-    for i in range(n_all):
-        if usable[i] and finite[i]:
-            n += 1
-    order = np.empty(n, dtype=np.int64)
-    m = 0
+    n = ref_tri.shape[0]
+    cen = np.empty((n, 3))
+    for i in range(n):
+        for c in range(3):
+            a = blo[i, c]
+            b = bhi[i, c]
+            if np.isfinite(a) and np.isfinite(b):
+                cen[i, c] = 0.5 * (a + b)
+            elif np.isfinite(a):
+                cen[i, c] = a
+            elif np.isfinite(b):
+                cen[i, c] = b
+            else:
+                cen[i, c] = 0.0
+    order = np.arange(n)
     big = 1.0
-    for i in range(n_all):
-        if usable[i] and finite[i]:
-            order[m] = i
-            m += 1
-            for c in range(3):
-                if np.isfinite(blo[i, c]):
-                    big = max(big, abs(blo[i, c]))
-                if np.isfinite(bhi[i, c]):
-                    big = max(big, abs(bhi[i, c]))
+    for i in range(n):
+        for c in range(3):
+            if np.isfinite(blo[i, c]):
+                big = max(big, abs(blo[i, c]))
+            if np.isfinite(bhi[i, c]):
+                big = max(big, abs(bhi[i, c]))
     big *= 1e3
     cap = max(1, 2 * n)
     nlo = np.empty((cap, 3))
@@ -301,10 +309,12 @@ def build_arrays(tris, usable, leaf_size, sah):
         st_d[sp] = depth + 1
         sp += 1
     ordered = np.empty((n, 3, 4))
+    index = np.empty(n, dtype=np.int64)
     for q in range(n):
+        index[q] = ref_tri[order[q]]
         for j in range(3):
             for c in range(4):
-                ordered[q, j, c] = tris[order[q], j, c]
+                ordered[q, j, c] = tris[index[q], j, c]
     # pad every box outward by a relative 1e-12 so that float rounding in the slab
     # test never culls a ray that meets a triangle on the box boundary
     for k in range(nnodes):
@@ -314,14 +324,189 @@ def build_arrays(tris, usable, leaf_size, sah):
             pad = 1e-12 * (abs(a) + abs(b)) if np.isfinite(a) and np.isfinite(b) else 0.0
             nlo[k, c] = a - pad
             nhi[k, c] = b + pad
-    return nlo[:nnodes], nhi[:nnodes], first[:nnodes], count[:nnodes], ordered, order
+    return nlo[:nnodes], nhi[:nnodes], first[:nnodes], count[:nnodes], ordered, index
+
+
+@jit
+def _clip_axis(poly, n, out, axis, value, keep_below):
+    """Clip a convex polygon (n points in ``poly``) to ``x[axis] <= value`` (or >=)."""
+    m = 0
+    for i in range(n):
+        j = (i + 1) % n
+        di = poly[i, axis] - value
+        dj = poly[j, axis] - value
+        if not keep_below:
+            di = -di
+            dj = -dj
+        if di <= 0.0:
+            for c in range(3):
+                out[m, c] = poly[i, c]
+            m += 1
+        if (di < 0.0 < dj) or (dj < 0.0 < di):
+            s = di / (di - dj)
+            for c in range(3):
+                out[m, c] = poly[i, c] + s * (poly[j, c] - poly[i, c])
+            out[m, axis] = value
+            m += 1
+    return m
+
+
+@jit
+def split_references(tris, usable, max_extent, region_lo, region_hi, max_pieces):
+    """References to the usable triangles, long ones cut into pieces with tight boxes.
+
+    Early split clipping (Ernst and Greiner 2007): a finite triangle whose box is
+    longer than ``max_extent`` inside the region of interest is cut in half along
+    its box's longest axis, each half clipped exactly to the triangle, recursively.
+    Every piece refers to the whole triangle (the hit test is the triangle's), so
+    pieces only shrink the boxes the traversal sees; a query that counts hits must
+    count a triangle once (kernels/raycast.py marks them).  Long thin shadow-volume
+    faces, whose boxes otherwise cover the scene, are why.
+
+    Parameters
+    ----------
+    tris : ndarray, shape (T, 3, 4), float64
+    usable : ndarray, shape (T,), bool
+    max_extent : float
+        Pieces are cut until no box side exceeds this (0: no cutting).
+    region_lo, region_hi : ndarray, shape (3,), float64
+        Boxes entirely outside this region are not cut further.
+    max_pieces : int
+        At most this many pieces per triangle.
+
+    Returns
+    -------
+    ref_tri : ndarray, shape (R,), int64
+    lo, hi : ndarray, shape (R, 3), float64
+    """
+    blo, bhi, cen, finite = triangle_bounds(tris)
+    nt = tris.shape[0]
+    cap = 0
+    for i in range(nt):
+        if usable[i] and finite[i]:
+            cap += 1
+    size = cap + 16
+    ref_tri = np.empty(size, dtype=np.int64)
+    rlo = np.empty((size, 3))
+    rhi = np.empty((size, 3))
+    nref = 0
+    depth_cap = 2 * max_pieces + 2
+    polys = np.empty((depth_cap, 12, 3))
+    plen = np.empty(depth_cap, dtype=np.int64)
+    tmp = np.empty((12, 3))
+    for i in range(nt):
+        if not (usable[i] and finite[i]):
+            continue
+        if nref + max_pieces + 2 > size:
+            size = 2 * size + max_pieces + 2
+            ref_tri = _grow_int(ref_tri, size)
+            rlo = _grow_box(rlo, size)
+            rhi = _grow_box(rhi, size)
+        allfinite = tris[i, 0, 3] == 1.0 and tris[i, 1, 3] == 1.0 and tris[i, 2, 3] == 1.0
+        if not allfinite or max_extent <= 0.0:
+            ref_tri[nref] = i
+            for c in range(3):
+                rlo[nref, c] = blo[i, c]
+                rhi[nref, c] = bhi[i, c]
+            nref += 1
+            continue
+        for j in range(3):
+            for c in range(3):
+                polys[0, j, c] = tris[i, j, c]
+        plen[0] = 3
+        sp = 1
+        pieces = 0
+        while sp > 0:
+            sp -= 1
+            n = plen[sp]
+            lo0 = np.inf
+            lo1 = np.inf
+            lo2 = np.inf
+            hi0 = -np.inf
+            hi1 = -np.inf
+            hi2 = -np.inf
+            for q in range(n):
+                lo0 = min(lo0, polys[sp, q, 0])
+                lo1 = min(lo1, polys[sp, q, 1])
+                lo2 = min(lo2, polys[sp, q, 2])
+                hi0 = max(hi0, polys[sp, q, 0])
+                hi1 = max(hi1, polys[sp, q, 1])
+                hi2 = max(hi2, polys[sp, q, 2])
+            e0 = hi0 - lo0
+            e1 = hi1 - lo1
+            e2 = hi2 - lo2
+            axis = 0
+            ext = e0
+            if e1 > ext:
+                axis = 1
+                ext = e1
+            if e2 > ext:
+                axis = 2
+                ext = e2
+            inside = (lo0 <= region_hi[0] and hi0 >= region_lo[0] and lo1 <= region_hi[1]
+                      and hi1 >= region_lo[1] and lo2 <= region_hi[2] and hi2 >= region_lo[2])
+            if ext <= max_extent or not inside or pieces + sp + 2 > max_pieces:
+                ref_tri[nref] = i
+                rlo[nref, 0] = lo0
+                rlo[nref, 1] = lo1
+                rlo[nref, 2] = lo2
+                rhi[nref, 0] = hi0
+                rhi[nref, 1] = hi1
+                rhi[nref, 2] = hi2
+                nref += 1
+                pieces += 1
+                continue
+            mid = 0.5 * ((lo0 if axis == 0 else (lo1 if axis == 1 else lo2))
+                         + (hi0 if axis == 0 else (hi1 if axis == 1 else hi2)))
+            for q in range(n):
+                for c in range(3):
+                    tmp[q, c] = polys[sp, q, c]
+            nb = _clip_axis(tmp, n, polys[sp], axis, mid, True)
+            na = _clip_axis(tmp, n, polys[sp + 1], axis, mid, False)
+            plen[sp] = nb
+            plen[sp + 1] = na
+            if nb >= 3 and na >= 3:
+                sp += 2
+            elif nb >= 3:
+                sp += 1
+            elif na >= 3:
+                for q in range(na):
+                    for c in range(3):
+                        polys[sp, q, c] = polys[sp + 1, q, c]
+                plen[sp] = na
+                sp += 1
+    return ref_tri[:nref], rlo[:nref], rhi[:nref]
+
+
+@jit
+def _grow_int(a, size):
+    out = np.empty(size, dtype=np.int64)
+    out[:a.shape[0]] = a
+    return out
+
+
+@jit
+def _grow_box(a, size):
+    out = np.empty((size, 3))
+    out[:a.shape[0]] = a
+    return out
 
 
 def build_bvh(tris: np.ndarray, usable: np.ndarray | None = None, *, leaf_size: int = 4,
-              sah: bool = True) -> BVH:
-    """Build a :data:`BVH` (see :func:`build_arrays` for the parameters)."""
+              sah: bool = True, max_extent: float = 0.0,
+              region: tuple[np.ndarray, np.ndarray] | None = None,
+              max_pieces: int = 64) -> BVH:
+    """Build a :data:`BVH` over the usable triangles (see :func:`build_arrays`).
+
+    ``max_extent`` > 0 cuts long triangles into pieces inside ``region`` (default:
+    everywhere), see :func:`split_references`.
+    """
     tris = np.ascontiguousarray(tris, dtype=np.float64)
     if usable is None:
         usable = np.ones(tris.shape[0], dtype=np.bool_)
-    return BVH(*build_arrays(tris, np.ascontiguousarray(usable, dtype=np.bool_),
-                             int(leaf_size), bool(sah)))
+    if region is None:
+        region = (np.full(3, -np.inf), np.full(3, np.inf))
+    ref, lo, hi = split_references(tris, np.ascontiguousarray(usable, dtype=np.bool_),
+                                   float(max_extent), np.asarray(region[0], np.float64),
+                                   np.asarray(region[1], np.float64), int(max_pieces))
+    return BVH(*build_arrays(tris, ref, lo, hi, int(leaf_size), bool(sah)))

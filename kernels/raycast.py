@@ -203,9 +203,14 @@ def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
 
 
 @inline
-def _all_hits(bvh, stack, hits, ox, oy, oz, dx, dy, dz, t0, t1, exclude, any_hit):
+def _all_hits(bvh, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1, exclude,
+              any_hit):
     """Caller indices of every triangle hit with t0 <= t <= t1 (``exclude`` left out),
-    written to ``hits``; returns how many (at most 1 when ``any_hit``)."""
+    written to ``hits``; returns how many (at most 1 when ``any_hit``).
+
+    A triangle cut into several pieces (kernels/bvh.py) is tested once: ``mark``
+    (indexed by caller index) holds the ``stamp`` of the query that last tested it.
+    """
     if bvh.lo.shape[0] == 0:
         return 0
     kx, ky, kz, sx, sy, sz = _ray_space(dx, dy, dz)
@@ -230,8 +235,9 @@ def _all_hits(bvh, stack, hits, ox, oy, oz, dx, dy, dz, t0, t1, exclude, any_hit
             f = first[node]
             for k in range(f, f + cnt):
                 idx = index[k]
-                if idx == exclude:
+                if idx == exclude or mark[idx] == stamp:
                     continue
+                mark[idx] = stamp
                 hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
                 if hit and t >= t0 and t <= t1:
                     hits[n] = idx
@@ -243,6 +249,15 @@ def _all_hits(bvh, stack, hits, ox, oy, oz, dx, dy, dz, t0, t1, exclude, any_hit
         stack[sp + 1] = first[node] + 1
         sp += 2
     return n
+
+
+@inline
+def _n_items(bvh):
+    """1 + the largest caller index in the tree (the size of a per-triangle mark)."""
+    m = 0
+    for q in range(bvh.index.shape[0]):
+        m = max(m, bvh.index[q] + 1)
+    return max(1, m)
 
 
 @jit
@@ -315,6 +330,7 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
     """
     stack = np.empty(STACK_SIZE, dtype=np.int64)
     hits = np.empty(max(1, bvh.index.shape[0]), dtype=np.int64)
+    seen = np.full(_n_items(bvh), -1, dtype=np.int64)
     mark = np.full(max(1, n_objects), -1, dtype=np.int64)
     nl = lights.shape[0]
     for r in range(r0, r1):
@@ -335,8 +351,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
             s0 = offset / np.sqrt(dx * dx + dy * dy + dz * dz)
             n = 0
             if s0 < 0.5:
-                n = _all_hits(bvh, stack, hits, px, py, pz, dx, dy, dz, s0, 1.0 - s0,
-                              exclude[r], not counts)
+                n = _all_hits(bvh, stack, hits, seen, r * nl + li, px, py, pz, dx, dy, dz,
+                              s0, 1.0 - s0, exclude[r], not counts)
             out_blocked[r, li] = n > 0
             if counts:
                 objs = 0
@@ -374,11 +390,12 @@ def count_crossings(bvh, face_light, face_weight, origin, direction, t_end, r0, 
     """
     stack = np.empty(STACK_SIZE, dtype=np.int64)
     hits = np.empty(max(1, bvh.index.shape[0]), dtype=np.int64)
+    seen = np.full(_n_items(bvh), -1, dtype=np.int64)
     nl = out_count.shape[1]
     for r in range(r0, r1):
         for li in range(nl):
             out_count[r, li] = 0
-        n = _all_hits(bvh, stack, hits, origin[r, 0], origin[r, 1], origin[r, 2],
+        n = _all_hits(bvh, stack, hits, seen, r, origin[r, 0], origin[r, 1], origin[r, 2],
                       direction[r, 0], direction[r, 1], direction[r, 2], 0.0, t_end[r],
                       -1, False)
         for q in range(n):

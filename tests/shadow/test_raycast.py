@@ -341,7 +341,8 @@ def test_thread_count_and_split_rule_do_not_change_the_result():
     sc = random_scene(5, directional=True)
     faces = [_point_light_faces(sc), (np.zeros((0, 3, 3)), np.zeros(0, np.int64))]
     base = raycast(sc, 48, 40, faces=faces, threads=1)
-    for kw in ({"threads": 2}, {"sah": False}, {"threads": 3, "sah": False}):
+    for kw in ({"threads": 2}, {"sah": False}, {"threads": 3, "sah": False},
+               {"split_faces": False}):
         other = raycast(sc, 48, 40, faces=faces, **kw)
         for f in dataclasses.fields(base):
             assert np.array_equal(getattr(base, f.name), getattr(other, f.name),
