@@ -12,7 +12,10 @@ happens in the layers above.  Stage by stage:
 * :mod:`.fragment`  -- per-fragment operations in IRIS GL order;
 * :mod:`.render`    -- binning and the band kernel that runs a whole batch (worker
   threads, see vgxsim/threads.py, each take bands of rows);
-* :mod:`.accum`     -- accumulation-buffer operations.
+* :mod:`.accum`     -- accumulation-buffer operations;
+* :mod:`.bvh`       -- bounding-volume hierarchy over triangles (the ray-cast oracle);
+* :mod:`.raycast`   -- exact float64 ray casting: nearest hit, shadow segments and
+  shadow-face crossing counts (:mod:`vgxsim.shadow.raycast` drives them).
 
 Only relative imports are used here: this folder must never be importable as a
 top-level ``kernels`` module (a different PyPI package has that name).

@@ -1,44 +1,85 @@
 """Exact float64 ray-cast reference for shadow scenes (the project's shadow oracle).
 
-Per pixel the ray goes through the pixel centre.  IRIS GL convention
+Eye rays.  Per pixel the ray goes through the pixel centre.  IRIS GL convention
 (docs/numeric_model.md section 1): integer window coordinates are pixel centres, the
 origin is the lower-left pixel and ``viewport(0, W-1, 0, H-1)`` is inclusive, so pixel
 ``(X, Y)`` has normalized device coordinates
 
     x_ndc = (2 X + 1) / W - 1,   y_ndc = (2 Y + 1) / H - 1.
 
-The ray is the segment from the near-plane point (z_ndc = -1) to the far-plane point
-(z_ndc = +1), both unprojected through the inverse of the scene's modelview x
-projection (row-vector convention, ``clip = obj @ MV @ P``), so near and far clipping
-match the renderer.  The nearest triangle along it (Moller-Trumbore, vectorised over
-all scene triangles) is the visible surface.  Per light, the segment from the hit
-point to the light is tested against every caster triangle: the point is lit iff no
-caster is hit strictly between them.  This is the definition of a hard shadow
-(article: "The volume of space behind the triangle ... is in shadow").
+The ray is ``origin + t * direction`` from the near-plane point (z_ndc = -1, t = 0) to
+the far-plane point (z_ndc = +1, t = 1), both unprojected through the inverse of the
+scene's modelview x projection (row-vector convention, ``clip = obj @ MV @ P``), so
+near and far clipping match the renderer (``-w <= z <= w``, both ends included).
 
-Two counts come with it:
+What is computed (all in float64, kernels in :mod:`vgxsim.kernels.raycast` over a
+BVH, :mod:`vgxsim.kernels.bvh`):
 
-* ``occluders``: how many distinct caster objects the segment to the light passes
-  through -- for closed convex casters, the number of shadow volumes containing the
-  point;
-* ``crossings``: the article's count, done exactly: "as you travel along the path
-  from your viewpoint to the object visible at that pixel, count the number of times
-  you cross through one of these semi-transparent surfaces going into shadow, and
-  subtract the number of times you cross going out of shadow", over the same finite
-  shadow faces the renderer draws (:func:`vgxsim.shadow.scene.shadow_faces`).  With
-  the eye outside every volume it equals the z-pass stencil count minus the stencil
-  "zero".
+* the **visible triangle**: the nearest scene triangle with ``0 <= t <= 1`` (equal t:
+  the lowest index), its object and world point;
+* per light, **lit**: the segment from the visible point P to the light meets no
+  caster triangle other than P's own, leaving out the first and last
+  ``eps * R`` world units of it (R: the scene's radius about the origin, at least 1;
+  about 1e-6 units for the default scene) -- the definition of a hard shadow
+  (article: "The volume of space behind the triangle ... is in shadow").  Point and
+  spot lights use their position (a spot's cone limits its light, not its shadow); a
+  directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a direction toward
+  the light) uses ``L = P + (4 R + 1) * unit(direction)``, beyond every caster;
+* per light, **occluders**: how many distinct caster objects that segment crosses;
+* per light, **layers**: how many light-facing caster triangles it crosses (facing:
+  ``N . (L - v0) > 0``, as :meth:`Polyhedron.facing`; ``N . direction > 0`` for
+  w = 0).  For closed, consistently wound casters this is the number of shadow
+  volumes containing P counted with multiplicity -- Crow's (1977) volume of each
+  light-facing polygon, equivalently the region bounded by the silhouette-edge
+  faces and the light-facing cap -- i.e. the value an exact z-fail stencil holds
+  (volumes extruded to infinity).  ``eye_layers`` is the same count at the eye;
+* per light, **crossings**: the article's count, done exactly: "as you travel along
+  the path from your viewpoint to the object visible at that pixel, count the number
+  of times you cross through one of these semi-transparent surfaces going into
+  shadow, and subtract the number of times you cross going out of shadow", over the
+  shadow faces the renderer draws (:func:`vgxsim.shadow.scene.shadow_faces`, finite
+  length, or faces the caller passes).  A face counts when it is met at
+  ``0 <= t <= t_P`` (the near plane and ``zfunction(ZF_LEQUAL)``'s equal case
+  included; ``t <= 1`` on background pixels), with +1 for an ingoing face (ST_INCR)
+  and -1 for an outgoing one (ST_DECR).  This is what a perfect z-pass stencil
+  holds minus its "zero" (Heidmann 1991), whatever the eye, near plane or caster
+  topology -- it is the count, not the shadow.  When the eye is outside every
+  volume, the volumes are long enough and the near plane cuts none of them,
+  ``crossings == layers - eye_layers`` for closed casters with silhouette faces
+  (twice that with all-edge faces); where those conditions fail is exactly where
+  z-pass goes wrong (shared/reference/shadow_literature.md H1-H3).
+
+Robustness (shared/reference/shadow_literature.md section 2): the ray/triangle test
+is watertight with a documented tie rule (module docstring of
+:mod:`vgxsim.kernels.raycast`): a ray through a shared edge or vertex of a surface
+crosses it exactly once, through a fold 0 or 2 times.  Degenerate triangles (zero
+cross product, exactly) are never hit.  The segment to the light leaves out P's own
+triangle and ``eps * R`` world units at each end (an absolute offset: relative to the
+segment's length it would grow to whole units for far lights), so neither the
+receiving surface nor one the light sits on shadows the point.  Vertices may be
+homogeneous with w = 0 (faces extruded to infinity); w < 0 is refused.
+
+Subpixel snapping (``subpixel=False/True``): every finite vertex that the camera
+sees inside the near and far planes and within the rasterizer's coordinate limit is
+moved, in its own depth plane, to where the rasterizer snaps it
+(:func:`vgxsim.kernels.clip.snap_window`, docs/numeric_model.md section 2), so the
+reference sees the same triangles as the rasterizer; ``lit``, ``occluders`` and
+``layers`` then describe the snapped scene and ``crossings`` the snapped faces.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from .scene import Scene, shadow_faces
+from vgxsim import threads as _threads
+from vgxsim.kernels.bvh import BVH, build_bvh
+from vgxsim.kernels.clip import COORD_LIMIT, ONE, snap_window
+from vgxsim.kernels.raycast import closest_hits, count_crossings, shadow_segments
 
-_CHUNK = 16384  # rays per block: keeps (rays x triangles x 3) float64 temporaries small
+from .scene import Scene, shadow_faces
 
 
 @dataclass(frozen=True)
@@ -60,11 +101,17 @@ class RayCastResult:
         Per light: the segment from the hit point to the light meets no caster.
         False on background pixels.
     occluders : ndarray, shape (H, W, L), int64
-        Per light: number of caster objects the segment meets.
+        Per light: number of caster objects the segment meets (0 when ``counts``
+        was off).
     crossings : ndarray, shape (H, W, L), int64
         Per light: signed count of shadow faces crossed between the near plane and
         the hit point (+1 ingoing, -1 outgoing); on background pixels, the count along
         the whole ray.
+    layers : ndarray, shape (H, W, L), int64
+        Per light: light-facing caster triangles the segment to the light crosses
+        (the z-fail count; 0 when ``counts`` was off).
+    eye_layers : ndarray, shape (L,), int64
+        ``layers`` of the eye point (the z-pass offset: shadow_literature.md H1).
     """
 
     object_id: np.ndarray
@@ -74,6 +121,8 @@ class RayCastResult:
     lit: np.ndarray
     occluders: np.ndarray
     crossings: np.ndarray
+    layers: np.ndarray
+    eye_layers: np.ndarray
 
     @property
     def hit(self) -> np.ndarray:
@@ -116,7 +165,11 @@ def pixel_rays(scene: Scene, width: int, height: int) -> tuple[np.ndarray, np.nd
 
 def intersect(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray]:
-    """Moller-Trumbore intersection of every ray with every triangle.
+    """Moller-Trumbore intersection of every ray with every triangle (all pairs).
+
+    A small numpy brute force for checks by hand; :func:`raycast` does not use it
+    (its watertight test and tie rule are in :mod:`vgxsim.kernels.raycast`).  Here
+    triangles are closed: a ray on a shared edge meets both.
 
     Parameters
     ----------
@@ -155,42 +208,193 @@ def intersect(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray
     return np.where(inside, t, np.inf), det
 
 
-def _groups(tris: np.ndarray, size: int = 16) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
-    """Consecutive runs of ``size`` triangles with their (slightly padded) boxes."""
-    out = []
-    for s in range(0, len(tris), size):
-        idx = np.arange(s, min(len(tris), s + size))
-        lo = tris[idx].min(axis=(0, 1))
-        hi = tris[idx].max(axis=(0, 1))
-        pad = 1e-9 * max(1.0, float(np.abs(np.concatenate([lo, hi])).max()))
-        out.append((idx, lo - pad, hi + pad))
+# --------------------------------------------------------------------------------------
+# Input preparation
+# --------------------------------------------------------------------------------------
+def homogeneous(tris: np.ndarray) -> np.ndarray:
+    """Triangles as (T, 3, 4) homogeneous vertices with w exactly 0 or 1.
+
+    Parameters
+    ----------
+    tris : array_like, shape (T, 3, 3) or (T, 3, 4)
+        Points, or homogeneous vertices (w = 0: a point at infinity in the
+        direction x, y, z; w > 0: the point (x, y, z) / w).
+
+    Returns
+    -------
+    ndarray, shape (T, 3, 4), float64
+
+    Raises
+    ------
+    ValueError
+        On non-finite values, w < 0, or a zero direction.
+    """
+    t = np.asarray(tris, dtype=np.float64)
+    if t.ndim != 3 or t.shape[1] != 3 or t.shape[2] not in (3, 4):
+        raise ValueError(f"triangles must have shape (T, 3, 3) or (T, 3, 4), not {t.shape}")
+    if not np.all(np.isfinite(t)):
+        raise ValueError("triangle vertices must be finite (use w = 0 for infinity)")
+    if t.shape[2] == 3:
+        return np.concatenate([t, np.ones(t.shape[:2] + (1,))], axis=2)
+    w = t[..., 3]
+    if np.any(w < 0.0):
+        raise ValueError("vertices with w < 0 are not supported: negate the 4-vector "
+                         "(it is the same point) or clip first")
+    if np.any((w == 0.0) & np.all(t[..., :3] == 0.0, axis=2)):
+        raise ValueError("a vertex at infinity (w = 0) needs a non-zero direction")
+    out = t.copy()
+    fin = w > 0.0
+    out[..., :3][fin] = t[..., :3][fin] / w[fin][:, None]
+    out[..., 3] = np.where(fin, 1.0, 0.0)
     return out
 
 
-def _box_hit(origin: np.ndarray, direction: np.ndarray, lo: np.ndarray, hi: np.ndarray,
-             tmax: np.ndarray) -> np.ndarray:
-    """(R,) bool: the segment ``origin + t direction``, 0 <= t <= tmax, meets the box."""
-    d = np.where(direction == 0.0, 1e-300, direction)
-    with np.errstate(over="ignore", invalid="ignore"):
-        t1 = (lo - origin) / d
-        t2 = (hi - origin) / d
-    tn = np.minimum(t1, t2).max(axis=1)
-    tf = np.maximum(t1, t2).min(axis=1)
-    return (tn <= tf) & (tf >= 0.0) & (tn <= tmax)
+def usable_triangles(tris4: np.ndarray) -> np.ndarray:
+    """(T,) bool: the triangle spans a plane (degenerate ones are never hit).
+
+    A finite triangle is degenerate when the cross product of its edges is exactly
+    zero; one with vertices at infinity when all four 3 x 3 minors of its 3 x 4
+    vertex matrix (its plane equation) are exactly zero.
+    """
+    fin = np.all(tris4[..., 3] == 1.0, axis=1)
+    a, b, c = tris4[:, 0, :3], tris4[:, 1, :3], tris4[:, 2, :3]
+    n = np.cross(b - a, c - a)
+    ok = np.any(n != 0.0, axis=1)
+    if not np.all(fin):
+        m = tris4[~fin]
+        minors = [np.linalg.det(m[:, :, [i for i in range(4) if i != skip]])
+                  for skip in range(4)]
+        ok[~fin] = np.any(np.stack(minors, axis=1) != 0.0, axis=1)
+    return ok
 
 
+def light_position(light) -> np.ndarray:
+    """The homogeneous position (4,) of a light: w = 1 point/spot, w = 0 directional.
+
+    Reads ``light.position`` (3 or 4 numbers) and, for 3, an optional ``light.w``
+    (default 1, a local light as :class:`~vgxsim.shadow.scene.PointLight`).
+    """
+    p = np.asarray(light.position, dtype=np.float64).reshape(-1)
+    if p.size == 3:
+        p = np.append(p, float(getattr(light, "w", 1.0)))
+    if p.size != 4 or not np.all(np.isfinite(p)):
+        raise ValueError(f"light {getattr(light, 'name', light)!r}: position must be 3 or 4 "
+                         f"finite numbers, not {light.position!r}")
+    if p[3] != 0.0:
+        return np.append(p[:3] / p[3], 1.0)
+    if not np.any(p[:3] != 0.0):
+        raise ValueError(f"light {getattr(light, 'name', light)!r}: a directional light "
+                         "(w = 0) needs a non-zero direction")
+    return p
+
+
+def snap_to_window(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
+                   subpixel: bool) -> np.ndarray:
+    """Move vertices to where the rasterizer snaps them (docs/numeric_model.md s. 2).
+
+    Each finite vertex with clip coordinates inside ``-w <= z <= w`` (w > 0) and
+    window coordinates within the rasterizer's limit is projected to window
+    coordinates for ``viewport(0, width-1, 0, height-1)``, snapped with
+    :func:`vgxsim.kernels.clip.snap_window` and unprojected at its own clip z and w.
+    Other vertices (behind the eye, clipped by near or far, at infinity) are kept:
+    the rasterizer sees their clipped images, not them.
+
+    Parameters
+    ----------
+    tris4 : ndarray, shape (T, 3, 4), float64
+    mvp : ndarray, shape (4, 4), float64
+        Modelview x projection, row-vector convention.
+    width, height : int
+    subpixel : bool
+        As ``subpixel(TRUE/FALSE)``.
+
+    Returns
+    -------
+    ndarray, shape (T, 3, 4), float64
+    """
+    v = tris4.reshape(-1, 4)
+    clip = v @ mvp
+    x, y, z, w = clip[:, 0], clip[:, 1], clip[:, 2], clip[:, 3]
+    fin = v[:, 3] == 1.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        hx, hy = width / 2.0, height / 2.0
+        xw = -0.5 + (x / w + 1.0) * hx
+        yw = -0.5 + (y / w + 1.0) * hy
+        ok = (fin & (w > 0.0) & (z >= -w) & (z <= w) & (np.abs(xw) < COORD_LIMIT)
+              & (np.abs(yw) < COORD_LIMIT))
+    if not np.any(ok):
+        return tris4.copy()
+    xf, yf = snap_window(np.ascontiguousarray(xw[ok]), np.ascontiguousarray(yw[ok]),
+                         bool(subpixel))
+    xs = xf / ONE
+    ys = yf / ONE
+    wk = w[ok]
+    snapped = np.stack([((xs + 0.5) / hx - 1.0) * wk, ((ys + 0.5) / hy - 1.0) * wk,
+                        z[ok], wk], axis=1) @ np.linalg.inv(mvp)
+    out = v.copy()
+    out[ok, :3] = snapped[:, :3] / snapped[:, 3:4]
+    return out.reshape(tris4.shape)
+
+
+def _bands(n: int, nthreads: int) -> list[tuple[int, int]]:
+    """Contiguous ray ranges, several per thread so that uneven rows balance."""
+    parts = max(1, min(n, 8 * nthreads if nthreads > 1 else 1))
+    edges = np.linspace(0, n, parts + 1).astype(np.int64)
+    return [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:], strict=True) if b > a]
+
+
+def run_bands(kernel, n: int, nthreads: int, *args) -> None:
+    """Run ``kernel(*args, r0, r1, *outs)`` over bands of rays on worker threads.
+
+    The kernels are nogil (kernels/options.py); each band writes disjoint rows of
+    the outputs, so the result does not depend on the thread count.
+    """
+    *inputs, outs = args
+    bands = _bands(n, nthreads)
+    if nthreads <= 1 or len(bands) <= 1:
+        for r0, r1 in bands:
+            kernel(*inputs, r0, r1, *outs)
+        return
+    futures = [_threads.pool(nthreads).submit(kernel, *inputs, r0, r1, *outs)
+               for r0, r1 in bands]
+    for f in futures:
+        f.result()
+
+
+def scene_bvh(tris4: np.ndarray, keep: np.ndarray | None = None, *, sah: bool = True,
+              split_within: np.ndarray | None = None) -> BVH:
+    """A BVH over the usable triangles of ``tris4`` (and ``keep``), caller-indexed.
+
+    ``split_within`` (shape (2, 3): a box) cuts triangles into pieces no longer than
+    1/32 of the box's diagonal inside it (:func:`vgxsim.kernels.bvh.split_references`):
+    long shadow faces otherwise overlap every eye ray's box tests (measured on 20
+    icospheres at 320 x 256: 7.4 s uncut, see bench/raycast.py).
+    """
+    usable = usable_triangles(tris4)
+    if keep is not None:
+        usable &= keep
+    if split_within is None:
+        return build_bvh(tris4, usable, sah=sah)
+    lo, hi = np.asarray(split_within[0], float), np.asarray(split_within[1], float)
+    return build_bvh(tris4, usable, sah=sah, max_extent=float(np.linalg.norm(hi - lo)) / 32,
+                     region=(lo, hi))
+
+
+# --------------------------------------------------------------------------------------
+# Casting
+# --------------------------------------------------------------------------------------
 def nearest_hit(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray,
-                tmax: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+                tmax: float = 1.0, *, threads: int | None = None
+                ) -> tuple[np.ndarray, np.ndarray]:
     """Nearest triangle along each segment ``origin + t direction``, 0 <= t <= tmax.
-
-    Triangles are tested in runs of 16 whose bounding boxes cull the rays that
-    cannot meet them; the result is the same as testing every pair.
 
     Parameters
     ----------
     origin, direction : ndarray, shape (R, 3)
-    tris : ndarray, shape (T, 3, 3)
+    tris : ndarray, shape (T, 3, 3) or (T, 3, 4)
     tmax : float
+    threads : int, optional
+        Worker threads (default :func:`vgxsim.threads.get_threads`).
 
     Returns
     -------
@@ -199,95 +403,159 @@ def nearest_hit(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray,
     t : ndarray, shape (R,), float64
         Ray parameter of the hit, inf where nothing is hit.
     """
-    n = len(origin)
-    best_t = np.full(n, np.inf)
-    best_i = np.full(n, -1, np.int64)
-    for idx, lo, hi in _groups(tris):
-        rays = np.nonzero(_box_hit(origin, direction, lo, hi,
-                                   np.minimum(best_t, tmax)))[0]
-        if len(rays) == 0:
-            continue
-        t, _ = intersect(origin[rays], direction[rays], tris[idx])
-        t = np.where((t >= 0.0) & (t <= tmax), t, np.inf)
-        k = np.argmin(t, axis=1)
-        tk = t[np.arange(len(k)), k]
-        better = tk < best_t[rays]
-        best_t[rays[better]] = tk[better]
-        best_i[rays[better]] = idx[k[better]]
-    return best_i, best_t
+    o = np.ascontiguousarray(origin, dtype=np.float64).reshape(-1, 3)
+    d = np.ascontiguousarray(direction, dtype=np.float64).reshape(-1, 3)
+    bvh = scene_bvh(homogeneous(tris))
+    idx = np.empty(len(o), np.int64)
+    t = np.empty(len(o))
+    n = _threads.get_threads() if threads is None else int(threads)
+    run_bands(closest_hits, len(o), n, bvh, o, d, 0.0, float(tmax), (idx, t))
+    return idx, t
+
+
+def _light_facing(tris4: np.ndarray, light: np.ndarray) -> np.ndarray:
+    """(T,) bool: ``N . (L - v0) > 0`` (``N . L`` for w = 0), N = (v1-v0) x (v2-v0)."""
+    a, b, c = tris4[:, 0, :3], tris4[:, 1, :3], tris4[:, 2, :3]
+    n = np.cross(b - a, c - a)
+    to_light = light[:3] - a if light[3] != 0.0 else np.broadcast_to(light[:3], a.shape)
+    return np.einsum("ij,ij->i", n, to_light) > 0.0
+
+
+def _scene_faces(scene: Scene, edges: str) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per light: the shadow-face triangles the renderer draws and their +-1 signs."""
+    out = []
+    for li in range(len(scene.lights)):
+        quads, ingoing = shadow_faces(scene, li, edges)
+        ftris = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+        sign = np.where(np.concatenate([ingoing, ingoing]), 1, -1)
+        out.append((ftris, sign))
+    return out
 
 
 def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
-            eps: float = 1e-7) -> RayCastResult:
+            eps: float = 1e-7, subpixel: bool | None = None,
+            faces: Sequence[tuple[np.ndarray, np.ndarray]] | None = None,
+            counts: bool = True, threads: int | None = None, sah: bool = True,
+            split_faces: bool = True) -> RayCastResult:
     """Ray-cast the scene: visible surface, per-light lit mask and shadow counts.
+
+    See the module docstring for exactly what is computed.
 
     Parameters
     ----------
     scene : Scene
     width, height : int
     edges : {'silhouette', 'all'}
-        Which shadow faces ``crossings`` counts (the lit mask does not depend on it).
+        Which shadow faces ``crossings`` counts (the lit mask does not depend on it);
+        ignored when ``faces`` is given.
     eps : float
-        Shadow segments from the hit point P to the light L count blockers at
-        parameters ``eps < s < 1 - eps`` of ``P + s (L - P)``, so the surface P lies
-        on does not shadow itself.
+        Shadow segments from the hit point P to the light count no blocker within
+        ``eps * R`` of either end (R: the scene's radius about the origin, >= 1).
+    subpixel : bool, optional
+        None: exact geometry.  False / True: vertices snapped as the rasterizer does
+        under ``subpixel(FALSE)`` / ``subpixel(TRUE)``.
+    faces : sequence of (triangles, weights), optional
+        Per light, the faces ``crossings`` counts instead of the scene's:
+        triangles of shape (F, 3, 3) or (F, 3, 4) (w = 0: at infinity) and int
+        weights (F,) (+1 ST_INCR, -1 ST_DECR; other values count with multiplicity).
+    counts : bool
+        False skips ``occluders`` and ``layers`` (left 0): each segment to a light
+        stops at its first blocker.  ``lit`` is the same either way.
+    threads : int, optional
+        Worker threads (default :func:`vgxsim.threads.get_threads`); the result
+        does not depend on it.
+    sah : bool
+        BVH split rule (SAH or median); the result does not depend on it.
+    split_faces : bool
+        Cut long shadow faces into pieces for the BVH (:func:`scene_bvh`); the
+        result does not depend on it, the time does.
 
     Returns
     -------
     RayCastResult
     """
+    nthreads = _threads.get_threads() if threads is None else int(threads)
+    if nthreads < 1:
+        raise ValueError("raycast: threads must be at least 1")
+    cam = scene.camera
+    mvp = cam.modelview() @ cam.projection(width / height)
     origin, direction = pixel_rays(scene, width, height)
-    o = origin.reshape(-1, 3)
-    d = direction.reshape(-1, 3)
+    o = np.ascontiguousarray(origin.reshape(-1, 3))
+    d = np.ascontiguousarray(direction.reshape(-1, 3))
     n = o.shape[0]
     tris, tri_obj = scene.triangles()
-    cast_obj = [i for i, ob in enumerate(scene.objects) if ob.casts]
-    cast_mask = np.isin(tri_obj, cast_obj)
-    cast_tris = tris[cast_mask]
-    cast_ids = tri_obj[cast_mask]
+    tris4 = homogeneous(tris)
     nl = len(scene.lights)
-    faces = []
+    lights = np.array([light_position(li) for li in scene.lights]).reshape(nl, 4)
+    if faces is None:
+        faces = _scene_faces(scene, edges)
+    if len(faces) != nl:
+        raise ValueError(f"raycast: faces has {len(faces)} entries for {nl} lights")
+    ftris = [homogeneous(f[0]).reshape(-1, 3, 4) for f in faces]
+    fweights = [np.asarray(f[1], np.int64).reshape(-1) for f in faces]
+    for li, (ft, fw) in enumerate(zip(ftris, fweights, strict=True)):
+        if len(ft) != len(fw):
+            raise ValueError(f"raycast: light {li}: {len(ft)} faces but {len(fw)} weights")
+    face4 = np.concatenate(ftris) if ftris else np.zeros((0, 3, 4))
+    face_light = np.concatenate([np.full(len(ft), li, np.int64)
+                                 for li, ft in enumerate(ftris)] or [np.zeros(0, np.int64)])
+    face_weight = np.concatenate(fweights or [np.zeros(0, np.int64)])
+    if subpixel is not None:
+        tris4 = snap_to_window(tris4, mvp, width, height, subpixel)
+        if len(face4):
+            face4 = snap_to_window(face4, mvp, width, height, subpixel)
+
+    # 1. visible surface
+    scene_tree = scene_bvh(tris4, sah=sah)
+    tri_idx = np.empty(n, np.int64)
+    thit = np.empty(n)
+    run_bands(closest_hits, n, nthreads, scene_tree, o, d, 0.0, 1.0, (tri_idx, thit))
+    hit = tri_idx >= 0
+    point = o + np.where(hit, thit, np.nan)[:, None] * d
+
+    # 2. segments to the lights
+    casts = np.array([ob.casts for ob in scene.objects], bool)
+    caster = casts[tri_obj] if len(tri_obj) else np.zeros(0, bool)
+    caster_tree = scene_bvh(tris4, caster, sah=sah)
+    layer_w = np.zeros((nl, len(tris4)), np.int64)
     for li in range(nl):
-        quads, ingoing = shadow_faces(scene, li, edges)
-        ftris = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
-        sign = np.where(np.concatenate([ingoing, ingoing]), 1, -1)
-        faces.append((ftris, sign))
-
-    tri_idx = np.full(n, -1, np.int64)
-    thit = np.full(n, np.inf)
-    lit = np.zeros((n, nl), bool)
+        layer_w[li] = caster & _light_facing(tris4, lights[li])
+    radius = float(np.sqrt(3.0) * max(1.0, np.abs(tris4[..., :3]).max(initial=0.0),
+                                       np.abs(np.asarray(cam.eye)).max()))
+    far = 4.0 * radius + 1.0
+    offset = float(eps) * radius
+    blocked = np.zeros((n, nl), bool)
     occl = np.zeros((n, nl), np.int64)
-    cross = np.zeros((n, nl), np.int64)
-    for s in range(0, n, _CHUNK):
-        sl = slice(s, min(n, s + _CHUNK))
-        ro, rd = o[sl], d[sl]
-        best, tb = nearest_hit(ro, rd, tris)
-        hit = best >= 0
-        tri_idx[sl] = best
-        thit[sl] = tb
-        p = ro + np.where(hit, tb, 0.0)[:, None] * rd
-        for li, light in enumerate(scene.lights):
-            lp = np.asarray(light.position, np.float64)
-            ts, _ = intersect(p, lp[None] - p, cast_tris)
-            blocked = (ts > eps) & (ts < 1.0 - eps)
-            per_obj = np.zeros((len(p), len(scene.objects)), bool)
-            for k in cast_obj:
-                per_obj[:, k] = blocked[:, cast_ids == k].any(axis=1)
-            occl[sl, li] = per_obj.sum(axis=1)
-            lit[sl, li] = hit & ~blocked.any(axis=1)
-            ftris, sign = faces[li]
-            tf, _ = intersect(ro, rd, ftris)
-            limit = np.where(hit, tb, 1.0)[:, None]
-            crossed = (tf > 0.0) & (tf < limit)
-            cross[sl, li] = (crossed * sign[None]).sum(axis=1)
+    layers = np.zeros((n, nl), np.int64)
+    pts = np.ascontiguousarray(np.where(hit[:, None], point, 0.0))
+    run_bands(shadow_segments, n, nthreads, caster_tree, tri_obj, len(scene.objects), layer_w,
+         pts, tri_idx, hit, lights, far, offset, bool(counts),
+         (blocked, occl, layers))
+    eye_b = np.zeros((1, nl), bool)
+    eye_o = np.zeros((1, nl), np.int64)
+    eye_l = np.zeros((1, nl), np.int64)
+    shadow_segments(caster_tree, tri_obj, len(scene.objects), layer_w,
+                    np.asarray(cam.eye, np.float64).reshape(1, 3), np.full(1, -1, np.int64),
+                    np.ones(1, bool), lights, far, offset, True, 0, 1, eye_b, eye_o, eye_l)
 
-    obj = np.where(tri_idx >= 0, tri_obj[np.maximum(tri_idx, 0)], -1)
-    point = o + np.where(np.isfinite(thit), thit, np.nan)[:, None] * d
+    # 3. shadow-face crossings along the eye rays
+    # eye rays end on the scene (or at the far plane): cut faces finely within the
+    # scene's box, where the rays' intervals end
+    box = np.stack([tris4[..., :3].reshape(-1, 3).min(axis=0),
+                    tris4[..., :3].reshape(-1, 3).max(axis=0)]) if len(tris4) else None
+    face_tree = scene_bvh(face4, sah=sah, split_within=box if split_faces else None)
+    cross = np.zeros((n, nl), np.int64)
+    t_end = np.where(hit, thit, 1.0)
+    run_bands(count_crossings, n, nthreads, face_tree, face_light, face_weight, o, d, t_end,
+         (cross,))
+
+    obj = np.where(hit, tri_obj[np.maximum(tri_idx, 0)], -1) if len(tri_obj) else tri_idx
     h, w = height, width
     return RayCastResult(object_id=obj.reshape(h, w), triangle=tri_idx.reshape(h, w),
                          point=point.reshape(h, w, 3), t=thit.reshape(h, w),
-                         lit=lit.reshape(h, w, nl), occluders=occl.reshape(h, w, nl),
-                         crossings=cross.reshape(h, w, nl))
+                         lit=(hit[:, None] & ~blocked).reshape(h, w, nl),
+                         occluders=occl.reshape(h, w, nl), crossings=cross.reshape(h, w, nl),
+                         layers=layers.reshape(h, w, nl), eye_layers=eye_l[0].copy())
 
 
 def shade(scene: Scene, result: RayCastResult) -> np.ndarray:

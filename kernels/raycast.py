@@ -1,0 +1,403 @@
+"""Exact float64 ray casting over a BVH: the shadow oracle's kernels.
+
+Ray/triangle test (watertight, Woop, Benthin and Wald 2013, "Watertight
+Ray/Triangle Intersection", JCGT 2(1)): the ray is mapped to a space where it runs
+along +z from the origin (translate by the origin, permute so the largest direction
+component is z, shear x and y), and each vertex gets 2-D coordinates ``(X, Y)`` in
+that space.  The three 2-D edge functions are then
+
+    U = Cx*By - Cy*Bx  (edge B->C),  V = Ax*Cy - Ay*Cx  (C->A),  W = Bx*Ay - By*Ax  (A->B),
+
+and the ray meets the triangle iff they have one sign.  A shared edge gives the two
+triangles edge functions that are exact negatives of each other (the vertex
+coordinates are the same floats and ``a*b - c*d`` is antisymmetric under the swap),
+so no ray passes between them.
+
+Tie rule (a ray exactly on an edge or through a vertex): an edge function that is
+exactly 0 takes the sign it would have if the ray were shifted by
+``(epsilon, epsilon**2)`` in the sheared x, y plane -- the sign of
+``Qy*Pw - Py*Qw``, or if that is 0 the sign of ``Px*Qw - Qx*Pw``, for the edge
+P->Q.  This is a symbolic perturbation of the ray (the same one for every triangle
+the ray is tested against), so a ray through a shared edge or vertex of a surface
+crosses it exactly once, and a ray through a fold (a silhouette edge seen along the
+ray) crosses it 0 or 2 times, never once: counts of crossings stay exact.  It is the
+rasterizer's rule (docs/numeric_model.md section 3: inclusive bottom and left
+edges) transplanted to ray space.  A triangle whose projection has no area (the ray
+lies in its plane, or the triangle is degenerate) is never hit.
+
+Homogeneous vertices: ``w`` is exactly 1 (a point) or 0 (a point at infinity in the
+direction ``(x, y, z)``, as infinite shadow-volume extrusions).  Translation by the
+origin moves only points (``P - o*w``); the edge functions and the tie rule hold for
+both, and the hit parameter is ``t = (U*Az + V*Bz + W*Cz) / (U*Aw + V*Bw + W*Cw)``
+(a zero denominator is a hit at infinity: none).
+
+All ray parameter intervals are closed: ``t0 <= t <= t1``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .bvh import STACK_SIZE
+from .options import inline, jit
+
+
+@inline
+def _ray_space(dx, dy, dz):
+    """Axis permutation and shear taking the direction to +z (Woop et al. 2013)."""
+    ax, ay, az = abs(dx), abs(dy), abs(dz)
+    kz = 0
+    if ay > ax and ay >= az:
+        kz = 1
+    elif az > ax and az > ay:
+        kz = 2
+    kx = (kz + 1) % 3
+    ky = (kz + 2) % 3
+    dkz = dz if kz == 2 else (dy if kz == 1 else dx)
+    if dkz < 0.0:  # keep the handedness, so the sign of U, V, W is the facing
+        kx, ky = ky, kx
+    dkx = dz if kx == 2 else (dy if kx == 1 else dx)
+    dky = dz if ky == 2 else (dy if ky == 1 else dx)
+    return kx, ky, kz, dkx / dkz, dky / dkz, 1.0 / dkz
+
+
+@inline
+def _edge_sign(e, px, py, pw, qx, qy, qw):
+    """Sign of edge function ``e`` of the edge P->Q, ties by the perturbation rule."""
+    if e > 0.0:
+        return 1
+    if e < 0.0:
+        return -1
+    g = qy * pw - py * qw
+    if g > 0.0:
+        return 1
+    if g < 0.0:
+        return -1
+    h = px * qw - qx * pw
+    if h > 0.0:
+        return 1
+    if h < 0.0:
+        return -1
+    return 0
+
+
+@inline
+def _vertex(tris, k, j, kx, ky, kz, okx, oky, okz, sx, sy, sz):
+    w = tris[k, j, 3]
+    x = tris[k, j, kx] - okx * w
+    y = tris[k, j, ky] - oky * w
+    z = tris[k, j, kz] - okz * w
+    return x - sx * z, y - sy * z, sz * z, w
+
+
+@inline
+def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
+    """(hit, t, side) of the ray with triangle ``k``; side +1/-1 is its facing."""
+    ax, ay, az, aw = _vertex(tris, k, 0, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    bx, by, bz, bw = _vertex(tris, k, 1, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    cx, cy, cz, cw = _vertex(tris, k, 2, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    u = cx * by - cy * bx
+    v = ax * cy - ay * cx
+    w = bx * ay - by * ax
+    su = _edge_sign(u, bx, by, bw, cx, cy, cw)
+    sv = _edge_sign(v, cx, cy, cw, ax, ay, aw)
+    sw = _edge_sign(w, ax, ay, aw, bx, by, bw)
+    if su == 0 or su != sv or su != sw:
+        return False, 0.0, 0
+    den = u * aw + v * bw + w * cw
+    if den == 0.0:
+        return False, 0.0, 0
+    return True, (u * az + v * bz + w * cz) / den, su
+
+
+@inline
+def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
+    """(hit, t_enter): the ray meets the node's box within [t0, t1] (conservative).
+
+    Each slab's interval is widened by a relative 1e-15 (more than the rounding of
+    ``(lo - o) * (1/d)``) and a zero direction component is a containment test, so
+    the test never culls a ray that meets the box; infinite bounds are fine.
+    """
+    tn = t0
+    tf = t1
+    for c in range(3):
+        if c == 0:
+            o, d, inv = ox, dx, ix
+        elif c == 1:
+            o, d, inv = oy, dy, iy
+        else:
+            o, d, inv = oz, dz, iz
+        if d == 0.0:
+            if o < lo[node, c] or o > hi[node, c]:
+                return False, tn
+            continue
+        a = (lo[node, c] - o) * inv
+        b = (hi[node, c] - o) * inv
+        if a > b:
+            a, b = b, a
+        a -= abs(a) * 1e-15
+        b += abs(b) * 1e-15
+        if a > tn:
+            tn = a
+        if b < tf:
+            tf = b
+    return tn <= tf, tn
+
+
+@inline
+def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
+    """Nearest hit with t0 <= t <= t1: (caller's triangle index or -1, t).
+
+    Ties in t go to the lowest caller index, whatever the tree's order."""
+    best = -1
+    bt = t1
+    if bvh.lo.shape[0] == 0:
+        return best, np.inf
+    kx, ky, kz, sx, sy, sz = _ray_space(dx, dy, dz)
+    okx = oz if kx == 2 else (oy if kx == 1 else ox)
+    oky = oz if ky == 2 else (oy if ky == 1 else ox)
+    okz = oz if kz == 2 else (oy if kz == 1 else ox)
+    ix = 1.0 / dx if dx != 0.0 else 0.0
+    iy = 1.0 / dy if dy != 0.0 else 0.0
+    iz = 1.0 / dz if dz != 0.0 else 0.0
+    lo, hi, first, count, tris, index = bvh.lo, bvh.hi, bvh.first, bvh.count, bvh.tris, bvh.index
+    ok, _ = _box(lo, hi, 0, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
+    if not ok:
+        return best, np.inf
+    stack[0] = 0
+    sp = 1
+    while sp > 0:
+        sp -= 1
+        node = stack[sp]
+        cnt = count[node]
+        if cnt > 0:
+            f = first[node]
+            for k in range(f, f + cnt):
+                hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                if hit and t >= t0 and t <= bt:
+                    idx = index[k]
+                    if t < bt or best < 0 or idx < best:
+                        bt = t
+                        best = idx
+            continue
+        left = first[node]
+        hl, tl = _box(lo, hi, left, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
+        hr, tr = _box(lo, hi, left + 1, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
+        if hl and hr:
+            if tl <= tr:  # nearer child popped first
+                stack[sp] = left + 1
+                stack[sp + 1] = left
+            else:
+                stack[sp] = left
+                stack[sp + 1] = left + 1
+            sp += 2
+        elif hl:
+            stack[sp] = left
+            sp += 1
+        elif hr:
+            stack[sp] = left + 1
+            sp += 1
+    if best < 0:
+        return best, np.inf
+    return best, bt
+
+
+@inline
+def _all_hits(bvh, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1, exclude,
+              any_hit):
+    """Caller indices of every triangle hit with t0 <= t <= t1 (``exclude`` left out),
+    written to ``hits``; returns how many (at most 1 when ``any_hit``).
+
+    A triangle cut into several pieces (kernels/bvh.py) is tested once: ``mark``
+    (indexed by caller index) holds the ``stamp`` of the query that last tested it.
+    """
+    if bvh.lo.shape[0] == 0:
+        return 0
+    kx, ky, kz, sx, sy, sz = _ray_space(dx, dy, dz)
+    okx = oz if kx == 2 else (oy if kx == 1 else ox)
+    oky = oz if ky == 2 else (oy if ky == 1 else ox)
+    okz = oz if kz == 2 else (oy if kz == 1 else ox)
+    ix = 1.0 / dx if dx != 0.0 else 0.0
+    iy = 1.0 / dy if dy != 0.0 else 0.0
+    iz = 1.0 / dz if dz != 0.0 else 0.0
+    lo, hi, first, count, tris, index = bvh.lo, bvh.hi, bvh.first, bvh.count, bvh.tris, bvh.index
+    n = 0
+    stack[0] = 0
+    sp = 1
+    while sp > 0:
+        sp -= 1
+        node = stack[sp]
+        ok, _ = _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1)
+        if not ok:
+            continue
+        cnt = count[node]
+        if cnt > 0:
+            f = first[node]
+            for k in range(f, f + cnt):
+                idx = index[k]
+                if idx == exclude or mark[idx] == stamp:
+                    continue
+                mark[idx] = stamp
+                hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                if hit and t >= t0 and t <= t1:
+                    hits[n] = idx
+                    n += 1
+                    if any_hit:
+                        return n
+            continue
+        stack[sp] = first[node]
+        stack[sp + 1] = first[node] + 1
+        sp += 2
+    return n
+
+
+@inline
+def _n_items(bvh):
+    """1 + the largest caller index in the tree (the size of a per-triangle mark)."""
+    m = 0
+    for q in range(bvh.index.shape[0]):
+        m = max(m, bvh.index[q] + 1)
+    return max(1, m)
+
+
+@jit
+def closest_hits(bvh, origin, direction, t0, t1, r0, r1, out_tri, out_t):
+    """Nearest triangle along rays ``r0 .. r1-1``.
+
+    Parameters
+    ----------
+    bvh : BVH
+    origin, direction : ndarray, shape (R, 3), float64
+        Ray ``origin + t * direction``.
+    t0, t1 : float
+        Closed parameter interval.
+    r0, r1 : int
+        Rays this call handles (a worker thread's band).
+    out_tri : ndarray, shape (R,), int64
+        Caller's triangle index, -1 for none (ties in t: lowest index).
+    out_t : ndarray, shape (R,), float64
+        Its parameter, inf for none.
+    """
+    stack = np.empty(STACK_SIZE, dtype=np.int64)
+    for r in range(r0, r1):
+        k, t = _closest(bvh, stack, origin[r, 0], origin[r, 1], origin[r, 2],
+                        direction[r, 0], direction[r, 1], direction[r, 2], t0, t1)
+        out_tri[r] = k
+        out_t[r] = t
+
+
+@jit
+def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, active,
+                    lights, far, offset, counts, r0, r1, out_blocked, out_objects,
+                    out_layers):
+    """Per point and light: is the segment to the light blocked, and by how much.
+
+    The segment from point P to light l is ``P + s * (L - P)`` with ``L`` the light
+    position (w != 0) or, for a directional light (w = 0), ``P + far * unit(x, y, z)``
+    -- beyond every caster when ``far`` exceeds the scene's diameter.  It is cut
+    short by ``offset`` (world units) at both ends: ``s0 <= s <= 1 - s0`` with
+    ``s0 = offset / |L - P|``.  Triangle ``exclude[r]`` (the one P was found on) is
+    skipped: with the offset this keeps a surface from shadowing itself.
+
+    Parameters
+    ----------
+    bvh : BVH
+        Caster triangles, numbered by the caller's (scene) index.
+    tri_object : ndarray, shape (T,), int64
+        Object of each scene triangle (0 .. n_objects-1).
+    n_objects : int
+    layer_weight : ndarray, shape (L, T), int64
+        Per light, the weight each caster triangle adds to ``out_layers`` when the
+        segment crosses it (the caller passes 1 for light-facing triangles).
+    points : ndarray, shape (R, 3), float64
+    exclude : ndarray, shape (R,), int64
+        Scene triangle to skip per point (-1: none).
+    active : ndarray, shape (R,), bool
+        Points to test (others are left untouched).
+    lights : ndarray, shape (L, 4), float64
+        Homogeneous light positions (w = 1 point or spot light, w = 0 directional).
+    far : float
+    offset : float
+    counts : bool
+        False: only ``out_blocked``, each segment stopping at its first hit (the fast
+        path); True: also the counts, from every hit.
+    r0, r1 : int
+    out_blocked : ndarray, shape (R, L), bool
+    out_objects : ndarray, shape (R, L), int64
+        Distinct objects crossed.
+    out_layers : ndarray, shape (R, L), int64
+        Sum of ``layer_weight`` over the triangles crossed.
+    """
+    stack = np.empty(STACK_SIZE, dtype=np.int64)
+    hits = np.empty(max(1, bvh.index.shape[0]), dtype=np.int64)
+    seen = np.full(_n_items(bvh), -1, dtype=np.int64)
+    mark = np.full(max(1, n_objects), -1, dtype=np.int64)
+    nl = lights.shape[0]
+    for r in range(r0, r1):
+        if not active[r]:
+            continue
+        px, py, pz = points[r, 0], points[r, 1], points[r, 2]
+        for li in range(nl):
+            lw = lights[li, 3]
+            if lw != 0.0:
+                dx = lights[li, 0] / lw - px
+                dy = lights[li, 1] / lw - py
+                dz = lights[li, 2] / lw - pz
+            else:
+                nrm = np.sqrt(lights[li, 0] ** 2 + lights[li, 1] ** 2 + lights[li, 2] ** 2)
+                dx = far * lights[li, 0] / nrm
+                dy = far * lights[li, 1] / nrm
+                dz = far * lights[li, 2] / nrm
+            s0 = offset / np.sqrt(dx * dx + dy * dy + dz * dz)
+            n = 0
+            if s0 < 0.5:
+                n = _all_hits(bvh, stack, hits, seen, r * nl + li, px, py, pz, dx, dy, dz,
+                              s0, 1.0 - s0, exclude[r], not counts)
+            out_blocked[r, li] = n > 0
+            if counts:
+                objs = 0
+                layers = 0
+                key = r * nl + li
+                for q in range(n):
+                    idx = hits[q]
+                    layers += layer_weight[li, idx]
+                    ob = tri_object[idx]
+                    if mark[ob] != key:
+                        mark[ob] = key
+                        objs += 1
+                out_objects[r, li] = objs
+                out_layers[r, li] = layers
+
+
+@jit
+def count_crossings(bvh, face_light, face_weight, origin, direction, t_end, r0, r1,
+                    out_count):
+    """Signed count of shadow-volume faces crossed by each ray, per light.
+
+    Parameters
+    ----------
+    bvh : BVH
+        Faces of every light, numbered by the caller's face index.
+    face_light : ndarray, shape (F,), int64
+        The light each face belongs to.
+    face_weight : ndarray, shape (F,), int64
+        +1 for a face going into shadow (ST_INCR), -1 out of it (ST_DECR).
+    origin, direction : ndarray, shape (R, 3), float64
+    t_end : ndarray, shape (R,), float64
+        Faces with ``0 <= t <= t_end[r]`` count.
+    r0, r1 : int
+    out_count : ndarray, shape (R, L), int64
+    """
+    stack = np.empty(STACK_SIZE, dtype=np.int64)
+    hits = np.empty(max(1, bvh.index.shape[0]), dtype=np.int64)
+    seen = np.full(_n_items(bvh), -1, dtype=np.int64)
+    nl = out_count.shape[1]
+    for r in range(r0, r1):
+        for li in range(nl):
+            out_count[r, li] = 0
+        n = _all_hits(bvh, stack, hits, seen, r, origin[r, 0], origin[r, 1], origin[r, 2],
+                      direction[r, 0], direction[r, 1], direction[r, 2], 0.0, t_end[r],
+                      -1, False)
+        for q in range(n):
+            f = hits[q]
+            out_count[r, face_light[f]] += face_weight[f]
