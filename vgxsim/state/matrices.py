@@ -5,6 +5,23 @@ MVIEWING keeps a modelview stack and a separate projection; MPROJECTION and
 MTEXTURE select those matrices.  Projection calls (perspective, window, ortho,
 ortho2) *load* -- they do not multiply -- and in MVIEWING they replace the
 projection matrix (MS "Porting Matrix and Transformation Functions"; IGL).
+
+Rules from mmode(3G):
+
+* "when matrix mode MSINGLE is entered or left, all matrix stacks are forced to be
+  empty, and all matrices are initialized to the identity matrix" (:meth:`set_mode`);
+  a switch among MVIEWING, MPROJECTION and MTEXTURE keeps every matrix.
+* "Both the single matrix and the ModelView matrix have a stack depth of 32.  The
+  Projection and Texture matrices are not stacked.  Thus matrix commands pushmatrix
+  and popmatrix should not be called while the matrix mode is MPROJECTION or
+  MTEXTURE": :meth:`push`/:meth:`pop` raise :class:`MatrixModeError` there (the gl
+  layer turns it into a GLUsageError), so a program that meant to save its projection
+  learns at once that it must use getmatrix/loadmatrix instead of silently keeping
+  the wrong matrix.
+
+A new window starts in MSINGLE with the pixel-unit 2-D projection loaded
+(:meth:`reset`, called by winopen; greset(3G) "loads a 2-D orthographic projection", the
+``ortho2(-0.5, W - 0.5, -0.5, H - 0.5)`` of subpixel(3G), as IGL does per window).
 """
 
 from __future__ import annotations
@@ -19,6 +36,10 @@ _IDENTITY.flags.writeable = False
 
 class MatrixStackError(RuntimeError):
     """Push beyond MATRIXSTACKDEPTH or pop of the last matrix."""
+
+
+class MatrixModeError(RuntimeError):
+    """pushmatrix/popmatrix in MPROJECTION or MTEXTURE, whose matrices have no stack."""
 
 
 class MatrixState:
@@ -67,9 +88,21 @@ class MatrixState:
             self.projection = np.array(m, dtype=np.float64)
         self._touch()
 
+    def reset(self, single: np.ndarray | None = None) -> None:
+        """MSINGLE with empty stacks and ``single`` (default identity) as the single
+        matrix; every other matrix the identity.  A new window passes its
+        ``ortho2(-0.5, W - 0.5, -0.5, H - 0.5)`` (greset(3G), subpixel(3G))."""
+        self.mode = MSINGLE
+        self.modelview = [np.eye(4) if single is None else
+                          np.array(single, dtype=np.float64).reshape(4, 4)]
+        self.projection = np.eye(4)
+        self.texture = np.eye(4)
+        self._touch()
+
     def push(self) -> None:
         if self.mode in (MPROJECTION, MTEXTURE):
-            return  # only the modelview stack is a stack (mmode(3G))
+            raise MatrixModeError("the projection and texture matrices are not stacked "
+                                  "(mmode(3G))")
         if len(self.modelview) >= STACK_DEPTH:
             raise MatrixStackError("matrix stack overflow (MATRIXSTACKDEPTH 32)")
         self.modelview.append(self.modelview[-1].copy())
@@ -77,20 +110,20 @@ class MatrixState:
 
     def pop(self) -> None:
         if self.mode in (MPROJECTION, MTEXTURE):
-            return
+            raise MatrixModeError("the projection and texture matrices are not stacked "
+                                  "(mmode(3G))")
         if len(self.modelview) <= 1:
             raise MatrixStackError("matrix stack underflow")
         self.modelview.pop()
         self._touch()
 
     def set_mode(self, mode: int) -> None:
-        if mode == MSINGLE and self.mode != MSINGLE:
-            self.projection = np.eye(4)
-        elif mode != MSINGLE and self.mode == MSINGLE and mode != MTEXTURE:
-            # Entering MVIEWING from MSINGLE: the single matrix becomes the projection
-            # (IGL does the same), the modelview starts as identity.
-            self.projection = self.modelview[-1].copy()
+        """mmode(mode): entering or leaving MSINGLE empties the stacks and makes every
+        matrix the identity (mmode(3G)); other switches keep all matrices."""
+        if (mode == MSINGLE) != (self.mode == MSINGLE):
             self.modelview = [np.eye(4)]
+            self.projection = np.eye(4)
+            self.texture = np.eye(4)
         self.mode = mode
         self._touch()
 
