@@ -14,6 +14,7 @@ from ._draw import *  # noqa: F401,F403
 from ._events import *  # noqa: F401,F403
 from ._lighting import *  # noqa: F401,F403
 from ._matrix import *  # noqa: F401,F403
+from ._menus import *  # noqa: F401,F403
 from ._objects import *  # noqa: F401,F403
 from ._oldstyle import *  # noqa: F401,F403
 from ._query import *  # noqa: F401,F403
