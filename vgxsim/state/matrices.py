@@ -50,6 +50,8 @@ class MatrixState:
         self.modelview = [np.eye(4)]  # MSINGLE and MVIEWING share this stack
         self.projection = np.eye(4)
         self.texture = np.eye(4)
+        self.pick: np.ndarray | None = None  # pick(3G) region matrix while picking
+        self._saved = None
         self._mvp = None
         self._mv_inv_t = None
 
@@ -65,8 +67,15 @@ class MatrixState:
             return self.texture
         return self.modelview[-1]
 
+    def _picked(self, m: np.ndarray) -> np.ndarray:
+        """A matrix that ends in clip space, composed with the pick matrix while
+        picking (the pick region then fills the clip volume)."""
+        return m if self.pick is None else m @ self.pick
+
     def load(self, m: np.ndarray) -> None:
         m = np.array(m, dtype=np.float64).reshape(4, 4)
+        if self.mode in (MSINGLE, MPROJECTION):
+            m = self._picked(m)
         if self.mode == MPROJECTION:
             self.projection = m
         elif self.mode == MTEXTURE:
@@ -82,10 +91,33 @@ class MatrixState:
     def load_projection(self, m: np.ndarray) -> None:
         """perspective/window/ortho/ortho2: in MSINGLE they load the single matrix,
         otherwise the projection matrix."""
+        m = self._picked(np.array(m, dtype=np.float64))
         if self.mode == MSINGLE:
-            self.modelview[-1] = np.array(m, dtype=np.float64)
+            self.modelview[-1] = m
         else:
-            self.projection = np.array(m, dtype=np.float64)
+            self.projection = m
+        self._touch()
+
+    def begin_pick(self, pick: np.ndarray) -> None:
+        """pick(3G) "places a special viewing matrix on the stack": every matrix that
+        ends in clip space (the single matrices, or the projection) is composed with
+        ``pick``, and so is every projection loaded until :meth:`end_pick`, which
+        restores the matrices as they were at pick()."""
+        self._saved = (self.mode, [m.copy() for m in self.modelview],
+                       self.projection.copy(), self.texture.copy())
+        self.pick = np.array(pick, dtype=np.float64).reshape(4, 4)
+        if self.mode == MSINGLE:
+            self.modelview = [m @ self.pick for m in self.modelview]
+        else:
+            self.projection = self.projection @ self.pick
+        self._touch()
+
+    def end_pick(self) -> None:
+        """endpick: the matrices as they were before pick()."""
+        if self._saved is not None:
+            self.mode, self.modelview, self.projection, self.texture = self._saved
+        self._saved = None
+        self.pick = None
         self._touch()
 
     def reset(self, single: np.ndarray | None = None) -> None:
@@ -121,8 +153,9 @@ class MatrixState:
         """mmode(mode): entering or leaving MSINGLE empties the stacks and makes every
         matrix the identity (mmode(3G)); other switches keep all matrices."""
         if (mode == MSINGLE) != (self.mode == MSINGLE):
-            self.modelview = [np.eye(4)]
-            self.projection = np.eye(4)
+            base = self._picked(np.eye(4))  # while picking the pick matrix underlies all
+            self.modelview = [base.copy() if mode == MSINGLE else np.eye(4)]
+            self.projection = np.eye(4) if mode == MSINGLE else base
             self.texture = np.eye(4)
         self.mode = mode
         self._touch()
