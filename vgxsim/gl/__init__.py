@@ -12,6 +12,7 @@ from ._color import *  # noqa: F401,F403
 from ._core import GLError, GLTypeError, GLUsageError, GLValueError  # noqa: F401
 from ._draw import *  # noqa: F401,F403
 from ._events import *  # noqa: F401,F403
+from ._fm import *  # noqa: F401,F403
 from ._lighting import *  # noqa: F401,F403
 from ._matrix import *  # noqa: F401,F403
 from ._menus import *  # noqa: F401,F403
