@@ -10,6 +10,7 @@ from vgxsim.GL import *  # noqa: F401,F403  (constants, for convenience)
 from ._accum import *  # noqa: F401,F403
 from ._color import *  # noqa: F401,F403
 from ._core import GLError, GLTypeError, GLUsageError, GLValueError  # noqa: F401
+from ._curves import *  # noqa: F401,F403
 from ._draw import *  # noqa: F401,F403
 from ._events import *  # noqa: F401,F403
 from ._fm import *  # noqa: F401,F403
