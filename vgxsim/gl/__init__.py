@@ -17,6 +17,7 @@ from ._fm import *  # noqa: F401,F403
 from ._lighting import *  # noqa: F401,F403
 from ._matrix import *  # noqa: F401,F403
 from ._menus import *  # noqa: F401,F403
+from ._nurbs import *  # noqa: F401,F403
 from ._objects import *  # noqa: F401,F403
 from ._oldstyle import *  # noqa: F401,F403
 from ._pick import *  # noqa: F401,F403
