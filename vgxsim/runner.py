@@ -1,8 +1,9 @@
 """Run an IRIS GL Python program headless: the engine behind ``vgxsim run``.
 
 A program written for CPython's historical IRIX binding does ``import gl, GL, DEVICE``
-(or ``from gl import *``).  For the length of the run those three names are aliases
-of :mod:`vgxsim.gl`, :mod:`vgxsim.GL` and :mod:`vgxsim.DEVICE` in ``sys.modules``;
+(or ``from gl import *``, and ``import fm`` for the Font Manager).  For the length of
+the run those names are aliases of :mod:`vgxsim.gl`, :mod:`vgxsim.GL`,
+:mod:`vgxsim.DEVICE` and :mod:`vgxsim.fm` in ``sys.modules``;
 the previous entries (usually none) are put back afterwards.  The program runs as
 ``__main__`` with ``sys.argv = [program, *args]`` and its folder first on
 ``sys.path``, as ``python program.py`` would run it.  stdin, stdout and stderr are
@@ -106,13 +107,15 @@ class FrameRecorder:
 
 @contextmanager
 def gl_modules():
-    """Make ``gl``, ``GL`` and ``DEVICE`` importable as the vgxsim modules, then restore
+    """Make ``gl``, ``GL``, ``DEVICE`` and ``fm`` importable as the vgxsim modules, then restore
     ``sys.modules`` as it was."""
     import vgxsim.DEVICE
+    import vgxsim.fm
     import vgxsim.GL
     import vgxsim.gl
 
-    aliases = {"gl": vgxsim.gl, "GL": vgxsim.GL, "DEVICE": vgxsim.DEVICE}
+    # fm: the Font Manager module of the same binding (vgxsim.fm).
+    aliases = {"gl": vgxsim.gl, "GL": vgxsim.GL, "DEVICE": vgxsim.DEVICE, "fm": vgxsim.fm}
     saved = {name: sys.modules.get(name) for name in aliases}
     sys.modules.update(aliases)
     try:

@@ -227,3 +227,85 @@ def test_standard_2d_projection_with_a_viewport(ctx):
     img = ctx.read_rgba()
     lit = {(int(x), int(y)) for y, x in zip(*np.nonzero(img[..., 0]), strict=True)}
     assert lit == {(x, y) for x in range(4, 8) for y in range(2, 5)} | {(11, 9)}
+
+
+# -- issue 10: the matrix rules of greset(3G) and mmode(3G) ---------------------------------
+def test_new_window_starts_in_msingle_with_the_pixel_projection(fresh_session):
+    # greset(3G) / IGL: ortho2(-0.5, W-0.5, -0.5, H-0.5).  For 200x100 by hand:
+    # 2/200 = 0.01, 2/100 = 0.02, z negated; translation -(199/200), -(99/100).
+    gl.prefsize(200, 100)
+    gl.winopen("ortho")
+    assert gl.getmmode() == GL.MSINGLE
+    m = mat()
+    np.testing.assert_allclose(np.diag(m), (0.01, 0.02, -1.0, 1.0), atol=1e-15)
+    np.testing.assert_allclose(m[3, :3], (-0.995, -0.99, 0.0), atol=1e-15)
+    assert np.count_nonzero(m) == 6  # nothing else
+
+
+def test_new_window_integer_coordinates_land_on_pixel_centres(fresh_session):
+    gl.prefsize(20, 10)
+    gl.winopen("pixel")
+    gl.RGBmode()
+    gl.gconfig()
+    gl.cpack(0xFF000000)
+    gl.clear()
+    gl.cpack(0xFF0000FF)
+    gl.bgnpoint()
+    gl.v2i(7, 3)
+    gl.endpoint()
+    img = np.frombuffer(gl.lrectread(0, 0, 19, 9), dtype=np.uint32).reshape(10, 20)
+    assert [tuple(map(int, p)) for p in np.argwhere(img & 0xFF)] == [(3, 7)]
+
+
+def test_entering_and_leaving_msingle_resets_every_matrix(ctx):
+    gl.translate(1, 2, 3)
+    gl.pushmatrix()
+    gl.mmode(GL.MVIEWING)  # leaving MSINGLE
+    np.testing.assert_allclose(mat(), np.eye(4))
+    with pytest.raises(gl.GLUsageError, match="underflow"):
+        gl.popmatrix()  # the stack was emptied
+    gl.mmode(GL.MPROJECTION)
+    np.testing.assert_allclose(mat(), np.eye(4))  # the old single matrix is not kept
+    gl.ortho2(0, 4, 0, 2)
+    gl.mmode(GL.MVIEWING)
+    gl.translate(5, 0, 0)
+    gl.pushmatrix()
+    gl.mmode(GL.MSINGLE)  # entering MSINGLE
+    np.testing.assert_allclose(mat(), np.eye(4))
+    np.testing.assert_allclose(ctx.matrices.mvp(), np.eye(4))
+    with pytest.raises(gl.GLUsageError, match="underflow"):
+        gl.popmatrix()
+    gl.mmode(GL.MVIEWING)  # and the projection did not survive the round trip
+    gl.mmode(GL.MPROJECTION)
+    np.testing.assert_allclose(mat(), np.eye(4))
+
+
+def test_switching_among_the_other_modes_keeps_the_matrices(ctx):
+    gl.mmode(GL.MVIEWING)
+    gl.translate(0, 0, -2)
+    gl.mmode(GL.MPROJECTION)
+    gl.ortho2(0, 4, 0, 2)
+    gl.mmode(GL.MTEXTURE)
+    gl.scale(2, 2, 1)
+    gl.mmode(GL.MVIEWING)
+    assert mat()[3, 2] == -2.0
+    gl.mmode(GL.MPROJECTION)
+    assert mat()[0, 0] == 0.5
+    gl.mmode(GL.MTEXTURE)
+    assert mat()[0, 0] == 2.0
+
+
+@pytest.mark.parametrize("mode", [GL.MPROJECTION, GL.MTEXTURE])
+def test_push_and_pop_are_errors_where_there_is_no_stack(ctx, mode):
+    # mmode(3G): "The Projection and Texture matrices are not stacked. Thus ...
+    # pushmatrix and popmatrix should not be called" there.  vgxsim: GLUsageError.
+    gl.mmode(mode)
+    gl.loadmatrix([2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1])
+    with pytest.raises(gl.GLUsageError, match=r"pushmatrix\(\).*not stacked"):
+        gl.pushmatrix()
+    with pytest.raises(gl.GLUsageError, match=r"popmatrix\(\).*not stacked"):
+        gl.popmatrix()
+    assert mat()[0, 0] == 2.0  # untouched
+    gl.mmode(GL.MVIEWING)
+    gl.pushmatrix()  # the modelview stack still works
+    gl.popmatrix()

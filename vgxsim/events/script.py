@@ -28,6 +28,7 @@ Grammar (EBNF)::
               | "key" KEY              (* one keystroke, see below *)
               | "type" TEXT            (* one keystroke per character *)
               | "tick" [ COUNT ]       (* COUNT timer ticks, default 1 *)
+              | "menu" CHOICE { CHOICE } (* answer the next dopup, see below *)
               | "stop" ;               (* end the run *)
     DEVICE    = NAME | INT ;           (* LEFTMOUSE, ESCKEY, MOUSEX, 103, ... *)
     VALUE     = INT ;  X = INT ;  Y = INT ;
@@ -36,6 +37,7 @@ Grammar (EBNF)::
     TEXT      = TOKEN ;                (* quote it if it has spaces *)
     INT       = [ "+" | "-" ] ( DIGITS | "0x" HEXDIGITS ) ;
     NAT       = INT >= 0 ;
+    CHOICE    = NAT | LABEL ;          (* entry number (1 = first) or its label *)
 
 KEYNAME is one of SPACE, RETURN (RET, ENTER), TAB, ESC (ESCAPE), BACKSPACE
 (BS), DELETE (DEL) or LINEFEED (LF).
@@ -60,6 +62,22 @@ LEFTSHIFTKEY.  Latin-1 characters without a key give KEYBD alone.  As every
 event, these only reach the queue for queued devices, but they always update
 ``getbutton`` state.
 
+Popup menus
+-----------
+``menu CHOICE ...`` is the user's pick in the popup menu a program opens with
+``dopup`` (vgxsim.gl._menus).  It is not delivered through the queue: ``dopup``
+takes the next script step if it is a ``menu`` step, whatever its ``after``/``wait``
+(the menu is modal; the user's next action answers it); if the next step is
+anything else, or there is none, ``dopup`` returns -1, as for a menu dismissed
+without a choice.  A ``menu`` step the queue reaches while no menu is up is
+dropped.  Each CHOICE picks an entry of one menu level, the first in the menu
+``dopup`` shows and each further one in the submenu (``%m``) of the entry before:
+an integer is the entry's number as ``setpup`` counts them (1 = first entry, the
+``%t`` title not counted), anything else is compared with the entries' labels
+(their text without the ``%`` directives, case-sensitive).  ``menu 0`` dismisses
+the menu.  ``click MENUBUTTON`` then ``menu Quit`` is what a user does to choose
+Quit from a program that calls ``dopup`` on ``(MENUBUTTON, 1)``.
+
 Example::
 
     move 320 240          # MOUSEX 320, MOUSEY 240
@@ -79,12 +97,31 @@ from __future__ import annotations
 import operator
 import shlex
 from collections.abc import Callable
+from dataclasses import dataclass
 from os import PathLike
 
 from vgxsim.events import _devices
 from vgxsim.events.queue import EventSource, Step
 
-__all__ = ["ScriptError", "parse_script", "load_script", "keystroke", "KEY_NAMES"]
+__all__ = ["ScriptError", "parse_script", "load_script", "keystroke", "KEY_NAMES",
+           "MenuChoice"]
+
+
+@dataclass(frozen=True)
+class MenuChoice(Step):
+    """A script ``menu`` statement: the user's choice in the next ``dopup``.
+
+    It makes no input events (``events`` is empty); ``dopup`` reads ``path`` (see
+    "Popup menus" in the module docstring).
+
+    Parameters
+    ----------
+    path : tuple of (int or str)
+        One entry per menu level: a 1-based entry number or a label; ``(0,)``
+        dismisses the menu.
+    """
+
+    path: tuple[int | str, ...] = ()
 
 Resolver = Callable[[str], int]
 
@@ -351,6 +388,26 @@ def _action(line: _Line, word: str) -> tuple[tuple[tuple[int, int], ...], int, b
     return ((dev, line.integer("value")),), 0, False
 
 
+def _menu_path(line: _Line) -> tuple[int | str, ...]:
+    """The CHOICEs of a ``menu`` statement: ints (entry numbers) or labels."""
+    path: list[int | str] = [line.next("menu entry (a number or a label)")]
+    path += line.tokens[line.pos:]
+    line.pos = len(line.tokens)
+    out: list[int | str] = []
+    for tok in path:
+        try:
+            num = int(tok, 0)
+        except ValueError:
+            out.append(tok)
+            continue
+        if num < 0:
+            raise line.error(tok, "menu entry numbers must be >= 0 (0 dismisses the menu)")
+        out.append(num)
+    if 0 in out and out != [0]:
+        raise line.error("0", "'menu 0' dismisses the menu and takes no other choice")
+    return tuple(out)
+
+
 def parse_script(
     text: str, filename: str = "<script>", resolve: Resolver | None = None
 ) -> list[Step]:
@@ -400,6 +457,11 @@ def parse_script(
         if word.lower() == "after":
             after = line.integer("frame number", 0)
             word = line.next("statement after the frame number")
+        if word.lower() == "menu":
+            steps.append(MenuChoice(after=after, wait=pending_wait, where=f"{filename}:{lineno}",
+                                    path=_menu_path(line)))
+            pending_wait = 0
+            continue
         events, ticks, stop = _action(line, word)
         line.end()
         steps.append(

@@ -10,12 +10,17 @@ from vgxsim.GL import *  # noqa: F401,F403  (constants, for convenience)
 from ._accum import *  # noqa: F401,F403
 from ._color import *  # noqa: F401,F403
 from ._core import GLError, GLTypeError, GLUsageError, GLValueError  # noqa: F401
+from ._curves import *  # noqa: F401,F403
 from ._draw import *  # noqa: F401,F403
 from ._events import *  # noqa: F401,F403
+from ._fm import *  # noqa: F401,F403
 from ._lighting import *  # noqa: F401,F403
 from ._matrix import *  # noqa: F401,F403
+from ._menus import *  # noqa: F401,F403
+from ._nurbs import *  # noqa: F401,F403
 from ._objects import *  # noqa: F401,F403
 from ._oldstyle import *  # noqa: F401,F403
+from ._pick import *  # noqa: F401,F403
 from ._query import *  # noqa: F401,F403
 from ._raster import *  # noqa: F401,F403
 from ._readback import *  # noqa: F401,F403

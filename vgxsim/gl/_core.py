@@ -67,9 +67,20 @@ class _Session:
         self.objects: dict[int, list] = {}  # display objects, by name
         self.open_object: int | None = None  # makeobj in progress
         self.recording = None  # the list calls are recorded into, or None
+        self.topics: dict[str, object] = {}  # per-topic state, see topic_state()
 
 
 session = _Session()
+
+
+def topic_state(key: str, factory):
+    """The session's state object for one topic of the gl layer (popup menus, pick
+    mode, fonts, curve bases, ...), made by ``factory()`` on first use and dropped by
+    ``session.reset()``, so each topic module keeps its state without a field here."""
+    state = session.topics.get(key)
+    if state is None:
+        state = session.topics[key] = factory()
+    return state
 
 
 def current(name: str, args: tuple = ()):

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim.geometry import transform as T
-from vgxsim.state.matrices import STACK_DEPTH, MatrixStackError
+from vgxsim.state.matrices import STACK_DEPTH, MatrixModeError, MatrixStackError
 
 from ._core import (
     GLTypeError,
@@ -82,12 +82,23 @@ def _finite(name: str, args: tuple, values) -> None:
         raise GLValueError(f"{describe(name, args)}: arguments must be finite")
 
 
+def load_window_projection(ctx) -> None:
+    """The matrices of a new window (winopen): MSINGLE holding
+    ``ortho2(-0.5, W - 0.5, -0.5, H - 0.5)``, so integer coordinates land on pixel
+    centres (greset(3G): "loads a 2-D orthographic projection"; IGL does the same for
+    every new window; irisgl_semantics_notes.md, Matrices)."""
+    w, h = ctx.width, ctx.height
+    ctx.matrices.reset(T.orthographic(-0.5, w - 0.5, -0.5, h - 0.5, -1.0, 1.0))
+
+
 @gl_function(record=True)
 def mmode(*args) -> None:
     """mmode(m): select MSINGLE, MPROJECTION, MVIEWING or MTEXTURE (mmode(3G)).
 
-    Entering MVIEWING from MSINGLE makes the single matrix the projection and the
-    modelview the identity (see :meth:`MatrixState.set_mode`).
+    Entering or leaving MSINGLE empties the matrix stacks and makes every matrix the
+    identity ("when matrix mode MSINGLE is entered or left, all matrix stacks are
+    forced to be empty, and all matrices are initialized to the identity matrix",
+    mmode(3G)); switching among the other three modes keeps every matrix.
     """
     _nargs("mmode", args, 1)
     m = check_token("mmode", args, "mode", args[0], _MMODES, "M")
@@ -241,11 +252,19 @@ def scale(*args) -> None:
 def pushmatrix(*args) -> None:
     """pushmatrix(): duplicate the top of the matrix stack (MATRIXSTACKDEPTH 32).
 
-    In MPROJECTION and MTEXTURE there is no stack (mmode(3G)); the call does nothing.
+    Only the single matrix (MSINGLE) and the ModelView matrix (MVIEWING) are stacked.
+    mmode(3G): "The Projection and Texture matrices are not stacked.  Thus matrix
+    commands pushmatrix and popmatrix should not be called while the matrix mode is
+    MPROJECTION or MTEXTURE."  vgxsim raises GLUsageError there rather than doing
+    nothing, because a silent no-op would leave the program with the wrong matrix
+    after its popmatrix; save the projection with getmatrix and restore it with
+    loadmatrix instead.
     """
     ctx = current("pushmatrix", args)
     try:
         ctx.matrices.push()
+    except MatrixModeError:
+        _not_stacked("pushmatrix", args, ctx)
     except MatrixStackError:
         raise GLUsageError(f"{describe('pushmatrix', args)}: matrix stack overflow "
                            f"(MATRIXSTACKDEPTH is {STACK_DEPTH})") from None
@@ -253,13 +272,24 @@ def pushmatrix(*args) -> None:
 
 @gl_function(record=True)
 def popmatrix(*args) -> None:
-    """popmatrix(): discard the top of the matrix stack."""
+    """popmatrix(): discard the top of the matrix stack; GLUsageError in MPROJECTION
+    and MTEXTURE, whose matrices are not stacked (see :func:`pushmatrix`)."""
     ctx = current("popmatrix", args)
     try:
         ctx.matrices.pop()
+    except MatrixModeError:
+        _not_stacked("popmatrix", args, ctx)
     except MatrixStackError:
         raise GLUsageError(f"{describe('popmatrix', args)}: matrix stack underflow "
                            f"(popmatrix without a matching pushmatrix)") from None
+
+
+def _not_stacked(name: str, args: tuple, ctx) -> None:
+    mode = "MPROJECTION" if ctx.matrices.mode == 1 else "MTEXTURE"
+    raise GLUsageError(f"{describe(name, args)}: the {mode} matrix is not stacked "
+                       f"(mmode(3G): pushmatrix and popmatrix should not be called in "
+                       f"MPROJECTION or MTEXTURE); save it with getmatrix() and restore "
+                       f"it with loadmatrix()") from None
 
 
 @gl_function(record=True)

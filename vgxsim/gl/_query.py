@@ -10,6 +10,16 @@ Sources for the answers are named per entry: [pstech] is SGI's Power Series tech
 report s.3 (VGX frame buffer), [ref] is the project note irisgl_reference.md, [model]
 is docs/numeric_model.md (what this emulator does).  Entries marked *assumed* have no
 source; each says why its value was chosen.
+
+Every answer is true of *vgxsim*, not only of the 1990 hardware: a program that asks
+before it draws (``if getgdesc(GD_TEXTURE): texdef2d(...)``) must not be sent down a
+path that then fails.  Features the VGX had but vgxsim does not emulate answer 0
+(stereo, smoothing, textports, cursors).  Features whose calls live in other parts of
+the gl layer (textures, clip planes, fog, zdraw, overlay planes, blink, NURBS) answer
+through :data:`FEATURE_GDESC`: the VGX value once the call exists in :mod:`vgxsim.gl`,
+0 before.  An inquiry that is no GD_* token answers -1 (getgdesc(3G): "returns -1 if
+the inquiry is invalid"), so programs that print every token they know -- including
+ones newer than vgxsim -- keep running.
 """
 
 from __future__ import annotations
@@ -17,11 +27,11 @@ from __future__ import annotations
 from vgxsim import GL
 from vgxsim.state.planes import MAX_STENCIL_PLANES, ZMAX, ZMIN
 
-from ._core import check_token, current, gl_function
+from ._core import as_int, check_token, current, gl_function
 
 __all__ = [
     "getgdesc", "getgconfig", "gversion", "getplanes", "getdisplaymode", "getbuffer",
-    "getzbuffer", "getdrawmode", "GDESC",
+    "getzbuffer", "getdrawmode", "GDESC", "FEATURE_GDESC",
 ]
 
 #: VGX answer of every getgdesc inquiry, by gl.h name.
@@ -43,40 +53,40 @@ GDESC: dict[str, int] = {
     "GD_BITS_NORM_SNG_MMAP": 8,  # assumed: multimap() splits the map into 256-entry maps
     "GD_BITS_NORM_DBL_MMAP": 8,  # assumed: as single-buffered
     "GD_BITS_NORM_ZBUFFER": 24,  # 24-bit z-buffer [pstech]
-    "GD_BITS_OVER_SNG_CMODE": 4,  # 4 overlay planes [pstech]
-    "GD_BITS_UNDR_SNG_CMODE": 4,  # assumed: underlay shares the 4 overlay-class planes
-    "GD_BITS_PUP_SNG_CMODE": 2,  # assumed: 4 pop-up colours PUP_CLEAR..PUP_WHITE (GL.py)
+    "GD_BITS_OVER_SNG_CMODE": 0,  # VGX had 4 [pstech]; see FEATURE_GDESC (drawmode)
+    "GD_BITS_UNDR_SNG_CMODE": 0,  # see FEATURE_GDESC (drawmode)
+    "GD_BITS_PUP_SNG_CMODE": 0,  # see FEATURE_GDESC (drawmode)
     "GD_BITS_NORM_SNG_ALPHA": 8,  # 8-bit alpha double-buffered [pstech]
     "GD_BITS_NORM_DBL_ALPHA": 8,  # [pstech]
-    "GD_BITS_CURSOR": 2,  # assumed: the usual 2 cursor planes of IRIS-4D systems
-    "GD_OVERUNDER_SHARED": 1,  # assumed: see GD_BITS_UNDR_SNG_CMODE
+    "GD_BITS_CURSOR": 0,  # headless: no cursor is drawn (defcursor is not emulated)
+    "GD_OVERUNDER_SHARED": 0,  # no overlay/underlay planes to share (FEATURE_GDESC)
     "GD_BLEND": 1,  # pixel blending [pstech]
     "GD_CIFRACT": 0,  # assumed: colour indices are not interpolated fractionally here
-    "GD_CROSSHAIR_CINDEX": 1,  # assumed: crosshair drawn in cursor colour 1
+    "GD_CROSSHAIR_CINDEX": 0,  # no cursor (see GD_BITS_CURSOR)
     "GD_DITHER": 0,  # assumed: the emulator never dithers (8 bits per component)
-    "GD_LINESMOOTH_CMODE": 1,  # real-time anti-aliased lines [pstech]
-    "GD_LINESMOOTH_RGB": 1,  # [pstech]
+    "GD_LINESMOOTH_CMODE": 0,  # linesmooth is accepted, not modelled (gl/_raster.py)
+    "GD_LINESMOOTH_RGB": 0,  # as GD_LINESMOOTH_CMODE
     "GD_LOGICOP": 1,  # logicop() supported [model s.6]
     "GD_NSCRNS": 1,  # one screen
-    "GD_NURBS_ORDER": 8,  # assumed: highest NURBS order
-    "GD_NBLINKS": 20,  # assumed: simultaneous blink() entries
+    "GD_NURBS_ORDER": 0,  # see FEATURE_GDESC (nurbssurface)
+    "GD_NBLINKS": 0,  # see FEATURE_GDESC (blink)
     "GD_NVERTEX_POLY": 256,  # assumed: Alice 4's POLY_MAX; the VGX figure is unknown [ref 1.8]
     "GD_PATSIZE_64": 0,  # assumed: 16x16 and 32x32 patterns only
-    "GD_PNTSMOOTH_CMODE": 1,  # real-time anti-aliased points [pstech]
-    "GD_PNTSMOOTH_RGB": 1,  # [pstech]
+    "GD_PNTSMOOTH_CMODE": 0,  # pntsmooth is accepted, not modelled
+    "GD_PNTSMOOTH_RGB": 0,  # as GD_PNTSMOOTH_CMODE
     "GD_PUP_TO_OVERUNDER": 0,  # assumed: pop-up planes are separate
     "GD_READSOURCE": 1,  # readsource(SRC_FRONT/SRC_BACK) supported [ref 1.11]
     "GD_READSOURCE_ZBUFFER": 1,  # readsource(SRC_ZBUFFER) supported (lrectread of z)
-    "GD_STEREO": 1,  # stereo [pstech]
+    "GD_STEREO": 0,  # VGX had stereo [pstech]; stereo windows are not emulated
     "GD_SUBPIXEL_LINE": 1,  # subpixel positioning [pstech] [ref 2.2]
     "GD_SUBPIXEL_PNT": 1,  # [pstech]
     "GD_SUBPIXEL_POLY": 1,  # [pstech]
-    "GD_TRIMCURVE_ORDER": 8,  # assumed: as GD_NURBS_ORDER
+    "GD_TRIMCURVE_ORDER": 0,  # see FEATURE_GDESC (bgntrim)
     "GD_WSYS": 1,  # GD_WSYS_4S: the 4Sight window system of IRIX 1990
-    "GD_ZDRAW_GEOM": 1,  # assumed: zdraw of geometry
-    "GD_ZDRAW_PIXELS": 1,  # assumed: zdraw of pixels
+    "GD_ZDRAW_GEOM": 0,  # see FEATURE_GDESC (zdraw)
+    "GD_ZDRAW_PIXELS": 0,  # see FEATURE_GDESC (zdraw)
     "GD_SCRNTYPE": 0,  # GD_SCRNTYPE_WM: a window-manager screen
-    "GD_TEXTPORT": 1,  # assumed: textports available
+    "GD_TEXTPORT": 0,  # headless: no textports (textport calls are not emulated)
     "GD_NMMAPS": 16,  # assumed: multimap() gives 16 maps (multimap(3G) "16 small maps")
     "GD_FRAMEGRABBER": 0,  # no Live Video Digitizer
     "GD_TIMERHZ": 60,  # TIMER0..3 tick once per 60 Hz frame (events queue model)
@@ -86,15 +96,15 @@ GDESC: dict[str, int] = {
     "GD_BITS_ACBUF": 16,  # 16 bits per component [ref 1.5] [model s.9]
     "GD_BITS_ACBUF_HW": 0,  # assumed: whether the VGX acbuf was hardware is unconfirmed
     "GD_BITS_STENCIL": MAX_STENCIL_PLANES,  # 8 stencil bitplanes [pstech]
-    "GD_CLIPPLANES": 6,  # assumed: six user clipping planes (clipplane(3G) CP_* 0..5)
-    "GD_FOGVERTEX": 1,  # atmospheric effects [pstech]
+    "GD_CLIPPLANES": 0,  # see FEATURE_GDESC (clipplane)
+    "GD_FOGVERTEX": 0,  # see FEATURE_GDESC (fogvertex)
     "GD_LIGHTING_TWOSIDE": 1,  # two-sided lighting [pstech]
-    "GD_POLYMODE": 1,  # assumed: polymode() supported
-    "GD_POLYSMOOTH": 1,  # real-time anti-aliased polygons [pstech]
+    "GD_POLYMODE": 0,  # polymode is recorded for getpolymode only; PYM_FILL is drawn
+    "GD_POLYSMOOTH": 0,  # polysmooth is accepted, not modelled
     "GD_SCRBOX": 0,  # assumed: no screen bounding box hardware
-    "GD_TEXTURE": 1,  # real-time texture mapping [pstech]
+    "GD_TEXTURE": 0,  # see FEATURE_GDESC (texdef2d)
     "GD_FOGPIXEL": 0,  # assumed: per-pixel fog is RealityEngine [ref 3]
-    "GD_TEXTURE_PERSP": 1,  # assumed: perspective-correct texture on VGX
+    "GD_TEXTURE_PERSP": 0,  # see FEATURE_GDESC (texdef2d)
     "GD_MUXPIPES": 0,  # assumed: one graphics pipe
     # Post-IRIX-5 inquiries (GL.POST_IRIX5): RealityEngine-era features are absent.
     "GD_MULTISAMPLE": 0,  # RealityEngine [ref 3]
@@ -107,6 +117,25 @@ GDESC: dict[str, int] = {
     "GD_LIGHTING_SPOTLIGHT": 1,  # spotlights [pstech]
     "GD_LIGHTING_ATT2": 1,  # assumed: ATTENUATION2 is emulated (vgxsim.lighting)
     "GD_AFUNCTION_MODES": 0xFF,  # assumed: bit n set for each supported AF_n (all eight)
+}
+
+#: Answers that depend on a feature: GD name -> (the gl call that provides the feature,
+#: the answer once it exists).  The values are the VGX's ([pstech] s.3: 4 overlay planes,
+#: texture, fog; clipplane(3G): six planes) or, for NURBS orders, the highest order
+#: vgxsim's own tessellator accepts (vgxsim.gl._nurbs.MAX_ORDER).
+FEATURE_GDESC: dict[str, tuple[str, int]] = {
+    "GD_TEXTURE": ("texdef2d", 1),
+    "GD_TEXTURE_PERSP": ("texdef2d", 1),
+    "GD_CLIPPLANES": ("clipplane", 6),
+    "GD_FOGVERTEX": ("fogvertex", 1),
+    "GD_ZDRAW_GEOM": ("zdraw", 1),
+    "GD_ZDRAW_PIXELS": ("zdraw", 1),
+    "GD_BITS_OVER_SNG_CMODE": ("drawmode", 4),
+    "GD_BITS_UNDR_SNG_CMODE": ("drawmode", 4),
+    "GD_BITS_PUP_SNG_CMODE": ("drawmode", 2),
+    "GD_NBLINKS": ("blink", 20),
+    "GD_NURBS_ORDER": ("nurbssurface", 8),
+    "GD_TRIMCURVE_ORDER": ("bgntrim", 8),
 }
 
 #: GD_* names that are answers, not inquiries (GD_WSYS/GD_SCRNTYPE values, GD_NOLIMIT).
@@ -134,16 +163,28 @@ def getgdesc(inquiry: int) -> int:
     Returns
     -------
     int
+        The answer; -1 for an int that is no GD_* inquiry (getgdesc(3G)).
 
     Raises
     ------
-    GLValueError
-        For a number that is no GD_* inquiry (the C library returned -1 there; an
-        exception names the mistake instead).
+    GLTypeError
+        If ``inquiry`` is not an int (the binding's ``PyInt_Check``).
     """
     args = (inquiry,)
-    name = _BY_VALUE.get(check_token("getgdesc", args, "inquiry", inquiry, _BY_VALUE, "GD_"))
+    name = _BY_VALUE.get(as_int("getgdesc", args, "inquiry", inquiry))
+    if name is None:
+        return -1
+    feature = FEATURE_GDESC.get(name)
+    if feature is not None:
+        return feature[1] if _implemented(feature[0]) else 0
     return GDESC[name]
+
+
+def _implemented(call: str) -> bool:
+    """Whether ``vgxsim.gl`` exports the IRIS GL call ``call``."""
+    import vgxsim.gl  # the package, complete by the time a program can call getgdesc
+
+    return callable(getattr(vgxsim.gl, call, None))
 
 
 @gl_function(record=False)

@@ -9,10 +9,12 @@ position is undefined" (cmov(3G)): here it is marked invalid
 (``Context.cpos_valid``) and ``charstr`` draws nothing until the next ``cmov``.
 cmov "does not affect the current graphics position".
 
-``charstr(s)`` draws the string with the built-in bitmap font (:mod:`vgxsim.font`,
-font 0: 8x13 cells, baseline 3 rows above the bottom) in the current colour, the
-first character's baseline starting at the character position, which then advances
-by each character's width (charstr(3G)).  Glyphs are bitmaps: the matrix does not
+``charstr(s)`` draws the string in the current raster font (``font(n)``; font 0 is
+the built-in bitmap font of :mod:`vgxsim.font`, 8x13 cells, baseline 3 rows above
+the bottom; others come from ``defrasterfont`` and the font manager, see
+:mod:`vgxsim.gl._fm`) in the current colour, the first character's baseline
+starting at the character position, which then advances by each character's width
+(charstr(3G)).  Glyphs are bitmaps: the matrix does not
 scale or rotate them.
 
 **Choice**: each lit glyph pixel is queued as a *fragment* with the current raster
@@ -32,7 +34,6 @@ import math
 
 import numpy as np
 
-from vgxsim import font as _font
 from vgxsim.geometry.transform import apply
 
 from ._core import (
@@ -44,18 +45,16 @@ from ._core import (
     gl_function,
 )
 from ._draw import coords
+from ._fm import raster_font
 
 __all__ = [
     "cmov", "cmovi", "cmovs", "cmov2", "cmov2i", "cmov2s", "charstr", "strwidth",
     "getheight", "getdescender", "font", "getfont", "getcpos",
 ]
 
-FONT = _font.DEFAULT_FONT
-
-
-def _defined(s: str) -> str:
-    """The characters of ``s`` that font 0 defines (others are ignored)."""
-    return "".join(ch for ch in s if FONT.has_glyph(ch))
+def _current_font(ctx):
+    """The window's current raster font (font 0 if its font was deleted since)."""
+    return raster_font(ctx.font) or raster_font(0)
 
 
 def character_position(ctx, xyzw) -> tuple[bool, int, int, int]:
@@ -140,19 +139,20 @@ def _packed(colour) -> int:
 def charstr(*args) -> None:
     """charstr(s): draw ``s`` at the current character position in the current colour
     and advance the position (charstr(3G)); see the module docstring."""
-    s = _defined(_string("charstr", args))
+    text = _string("charstr", args)
     ctx = current("charstr", args)
+    f = _current_font(ctx)
+    s = f.defined(text)
     if not s or not ctx.cpos_valid:
         return
     x0, y0 = ctx.cpos
-    bits = FONT.string_bitmap(s)  # (13, 8n), row 0 at the bottom of the cell
-    rows, cols = np.nonzero(bits)
-    if rows.size:
-        xy = np.stack([x0 + cols, y0 - FONT.descender + rows], axis=1).astype(np.int64)
-        z = np.full(rows.size, ctx.cpos_z, dtype=np.int64)
-        rgba = np.full(rows.size, _packed(ctx.colour), dtype=np.int64)
+    dx, dy, advance = f.pixels(s)  # offsets from the character position
+    if dx.size and ctx.select_hook is None:  # pick/select mode draws nothing
+        xy = np.stack([x0 + dx, y0 + dy], axis=1).astype(np.int64)
+        z = np.full(dx.size, ctx.cpos_z, dtype=np.int64)
+        rgba = np.full(dx.size, _packed(ctx.colour), dtype=np.int64)
         ctx.batch.add_fragments(xy, z, rgba, ctx.raster.snapshot())
-    ctx.cpos = (x0 + FONT.string_width(s), y0)
+    ctx.cpos = (x0 + advance, y0)
 
 
 @gl_function(record=False)
@@ -160,40 +160,38 @@ def strwidth(*args) -> int:
     """strwidth(s) -> int: the width of ``s`` in pixels in the current font (what
     charstr advances the character position by)."""
     s = _string("strwidth", args)
-    current("strwidth", args)
-    return FONT.string_width(_defined(s))
+    return _current_font(current("strwidth", args)).string_width(s)
 
 
 @gl_function(record=False)
 def getheight(*args) -> int:
-    """getheight() -> int: the height of the current font's cells (13)."""
-    current("getheight", args)
-    return FONT.height
+    """getheight() -> int: the height of the current raster font (13 for font 0)."""
+    return _current_font(current("getheight", args)).height
 
 
 @gl_function(record=False)
 def getdescender(*args) -> int:
-    """getdescender() -> int: rows of the current font below the baseline (3)."""
-    current("getdescender", args)
-    return FONT.descender
+    """getdescender() -> int: the longest descender of the current raster font, in
+    rows below the baseline (3 for font 0)."""
+    return _current_font(current("getdescender", args)).descender
 
 
 @gl_function(record=True)
 def font(*args) -> None:
-    """font(n): select raster font ``n``.  Only font 0, the built-in font, exists
-    (defrasterfont is not emulated); another number is a GLValueError."""
+    """font(n): select raster font ``n`` (0, the built-in font, or one defined by
+    defrasterfont or the font manager); an undefined number is a GLValueError."""
     if len(args) != 1:
         raise GLTypeError(f"{describe('font', args)}: expected 1 argument, got {len(args)}")
     n = as_int("font", args, "fntnum", args[0])
-    if n != 0:
-        raise GLValueError(f"{describe('font', args)}: font {n} is not defined (only font 0, "
-                           f"the built-in font, exists; defrasterfont is not emulated)")
-    current("font", args).font = 0
+    if raster_font(n) is None:
+        raise GLValueError(f"{describe('font', args)}: font {n} is not defined (font 0 is "
+                           f"the built-in font; define others with defrasterfont)")
+    current("font", args).font = n
 
 
 @gl_function(record=False)
 def getfont(*args) -> int:
-    """getfont() -> int: the current font number (always 0)."""
+    """getfont() -> int: the current raster font number."""
     return int(current("getfont", args).font)
 
 

@@ -49,6 +49,7 @@ from ._core import (
     gl_function,
     session,
 )
+from ._matrix import load_window_projection
 
 __all__ = [
     "winopen", "winclose", "winset", "winget", "wintitle", "prefsize", "prefposition",
@@ -212,6 +213,7 @@ def winopen(name: str) -> int:
     c.pop("owner", None)
     _clear_constraints()
     ctx = Context(w, h, rgb=False, double=False, stencil=0, zbits=24, acbits=0)
+    load_window_projection(ctx)  # MSINGLE with ortho2(-0.5, w-0.5, -0.5, h-0.5), greset(3G)
     gid = session.next_gid
     session.next_gid += 1
     ctx.gid = gid

@@ -90,6 +90,9 @@ class Context:
         self.cpos_z = 0
         self.cpos_valid = True
         self.font = 0
+        # pick(3G)/gselect(3G) mode (gl/_pick.py): a callable that hit-tests each
+        # primitive in clip space instead of drawing it; None when drawing.
+        self.select_hook = None
         self.configure(self.pending)
 
     # -- configuration ----------------------------------------------------------------
@@ -298,6 +301,9 @@ class Context:
                                   np.ones((obj.shape[0], 1))], axis=1)
         else:
             obj = obj.copy()  # drawing is deferred: keep the caller free to reuse its array
+        if self.select_hook is not None:  # pick/select mode: hit-test, draw nothing
+            self.select_hook(kind, apply(obj, self.matrices.mvp()), swaps, indices)
+            return
         n = obj.shape[0]
         rs = self.raster.snapshot()
         cols = None
@@ -376,7 +382,10 @@ class Context:
 
     # -- clears, readback, frames ------------------------------------------------------
     def clear_planes(self, planes: int, colour: int = 0, z: int = ZMAX, stencil: int = 0) -> None:
-        """Queue a clear of the raster rectangle (CLEAR_* plane bits)."""
+        """Queue a clear of the raster rectangle (CLEAR_* plane bits); none in pick or
+        select mode, which draws nothing (pick(3G))."""
+        if self.select_hook is not None:
+            return
         self.batch.add_clear(planes, colour, z, stencil, self.raster.clear_state())
 
     def flush(self) -> None:

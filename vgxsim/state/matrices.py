@@ -5,6 +5,23 @@ MVIEWING keeps a modelview stack and a separate projection; MPROJECTION and
 MTEXTURE select those matrices.  Projection calls (perspective, window, ortho,
 ortho2) *load* -- they do not multiply -- and in MVIEWING they replace the
 projection matrix (MS "Porting Matrix and Transformation Functions"; IGL).
+
+Rules from mmode(3G):
+
+* "when matrix mode MSINGLE is entered or left, all matrix stacks are forced to be
+  empty, and all matrices are initialized to the identity matrix" (:meth:`set_mode`);
+  a switch among MVIEWING, MPROJECTION and MTEXTURE keeps every matrix.
+* "Both the single matrix and the ModelView matrix have a stack depth of 32.  The
+  Projection and Texture matrices are not stacked.  Thus matrix commands pushmatrix
+  and popmatrix should not be called while the matrix mode is MPROJECTION or
+  MTEXTURE": :meth:`push`/:meth:`pop` raise :class:`MatrixModeError` there (the gl
+  layer turns it into a GLUsageError), so a program that meant to save its projection
+  learns at once that it must use getmatrix/loadmatrix instead of silently keeping
+  the wrong matrix.
+
+A new window starts in MSINGLE with the pixel-unit 2-D projection loaded
+(:meth:`reset`, called by winopen; greset(3G) "loads a 2-D orthographic projection", the
+``ortho2(-0.5, W - 0.5, -0.5, H - 0.5)`` of subpixel(3G), as IGL does per window).
 """
 
 from __future__ import annotations
@@ -21,6 +38,10 @@ class MatrixStackError(RuntimeError):
     """Push beyond MATRIXSTACKDEPTH or pop of the last matrix."""
 
 
+class MatrixModeError(RuntimeError):
+    """pushmatrix/popmatrix in MPROJECTION or MTEXTURE, whose matrices have no stack."""
+
+
 class MatrixState:
     """Stacks of 4x4 float64 row-vector matrices."""
 
@@ -29,6 +50,8 @@ class MatrixState:
         self.modelview = [np.eye(4)]  # MSINGLE and MVIEWING share this stack
         self.projection = np.eye(4)
         self.texture = np.eye(4)
+        self.pick: np.ndarray | None = None  # pick(3G) region matrix while picking
+        self._saved = None
         self._mvp = None
         self._mv_inv_t = None
 
@@ -44,8 +67,15 @@ class MatrixState:
             return self.texture
         return self.modelview[-1]
 
+    def _picked(self, m: np.ndarray) -> np.ndarray:
+        """A matrix that ends in clip space, composed with the pick matrix while
+        picking (the pick region then fills the clip volume)."""
+        return m if self.pick is None else m @ self.pick
+
     def load(self, m: np.ndarray) -> None:
         m = np.array(m, dtype=np.float64).reshape(4, 4)
+        if self.mode in (MSINGLE, MPROJECTION):
+            m = self._picked(m)
         if self.mode == MPROJECTION:
             self.projection = m
         elif self.mode == MTEXTURE:
@@ -61,15 +91,50 @@ class MatrixState:
     def load_projection(self, m: np.ndarray) -> None:
         """perspective/window/ortho/ortho2: in MSINGLE they load the single matrix,
         otherwise the projection matrix."""
+        m = self._picked(np.array(m, dtype=np.float64))
         if self.mode == MSINGLE:
-            self.modelview[-1] = np.array(m, dtype=np.float64)
+            self.modelview[-1] = m
         else:
-            self.projection = np.array(m, dtype=np.float64)
+            self.projection = m
+        self._touch()
+
+    def begin_pick(self, pick: np.ndarray) -> None:
+        """pick(3G) "places a special viewing matrix on the stack": every matrix that
+        ends in clip space (the single matrices, or the projection) is composed with
+        ``pick``, and so is every projection loaded until :meth:`end_pick`, which
+        restores the matrices as they were at pick()."""
+        self._saved = (self.mode, [m.copy() for m in self.modelview],
+                       self.projection.copy(), self.texture.copy())
+        self.pick = np.array(pick, dtype=np.float64).reshape(4, 4)
+        if self.mode == MSINGLE:
+            self.modelview = [m @ self.pick for m in self.modelview]
+        else:
+            self.projection = self.projection @ self.pick
+        self._touch()
+
+    def end_pick(self) -> None:
+        """endpick: the matrices as they were before pick()."""
+        if self._saved is not None:
+            self.mode, self.modelview, self.projection, self.texture = self._saved
+        self._saved = None
+        self.pick = None
+        self._touch()
+
+    def reset(self, single: np.ndarray | None = None) -> None:
+        """MSINGLE with empty stacks and ``single`` (default identity) as the single
+        matrix; every other matrix the identity.  A new window passes its
+        ``ortho2(-0.5, W - 0.5, -0.5, H - 0.5)`` (greset(3G), subpixel(3G))."""
+        self.mode = MSINGLE
+        self.modelview = [np.eye(4) if single is None else
+                          np.array(single, dtype=np.float64).reshape(4, 4)]
+        self.projection = np.eye(4)
+        self.texture = np.eye(4)
         self._touch()
 
     def push(self) -> None:
         if self.mode in (MPROJECTION, MTEXTURE):
-            return  # only the modelview stack is a stack (mmode(3G))
+            raise MatrixModeError("the projection and texture matrices are not stacked "
+                                  "(mmode(3G))")
         if len(self.modelview) >= STACK_DEPTH:
             raise MatrixStackError("matrix stack overflow (MATRIXSTACKDEPTH 32)")
         self.modelview.append(self.modelview[-1].copy())
@@ -77,20 +142,21 @@ class MatrixState:
 
     def pop(self) -> None:
         if self.mode in (MPROJECTION, MTEXTURE):
-            return
+            raise MatrixModeError("the projection and texture matrices are not stacked "
+                                  "(mmode(3G))")
         if len(self.modelview) <= 1:
             raise MatrixStackError("matrix stack underflow")
         self.modelview.pop()
         self._touch()
 
     def set_mode(self, mode: int) -> None:
-        if mode == MSINGLE and self.mode != MSINGLE:
-            self.projection = np.eye(4)
-        elif mode != MSINGLE and self.mode == MSINGLE and mode != MTEXTURE:
-            # Entering MVIEWING from MSINGLE: the single matrix becomes the projection
-            # (IGL does the same), the modelview starts as identity.
-            self.projection = self.modelview[-1].copy()
-            self.modelview = [np.eye(4)]
+        """mmode(mode): entering or leaving MSINGLE empties the stacks and makes every
+        matrix the identity (mmode(3G)); other switches keep all matrices."""
+        if (mode == MSINGLE) != (self.mode == MSINGLE):
+            base = self._picked(np.eye(4))  # while picking the pick matrix underlies all
+            self.modelview = [base.copy() if mode == MSINGLE else np.eye(4)]
+            self.projection = np.eye(4) if mode == MSINGLE else base
+            self.texture = np.eye(4)
         self.mode = mode
         self._touch()
 
