@@ -4,13 +4,19 @@
 
     vgxsim --version
     vgxsim run PROGRAM.py [--events FILE] [--frames DIR|FILE.gif|FILE.mp4] [--size WxH]
-                          [--max-frames N] [--fps F] [-- PROGRAM ARGS...]
+                          [--max-frames N] [--timeout SECONDS] [--fps F] [--overwrite]
+                          [-- PROGRAM ARGS...]
     vgxsim render [--out PATH] [--size WxH] [--mode objects|volumes|shadows]
-                  [--edges all|silhouette]
+                  [--edges all|silhouette] [--overwrite]
 
 ``run`` executes an IRIS GL Python program headless (see :mod:`vgxsim.runner`);
 everything after ``--`` is passed to the program.  ``render`` draws Heidmann's 1991
-scene with :mod:`vgxsim.examples.heidmann1991` and writes one PNG.
+scene with :mod:`vgxsim.examples.heidmann1991` and writes one image (PNG, JPEG or
+TIFF, by the file name).
+
+Outputs are never replaced silently: an existing ``--out`` file, ``--frames`` video
+file or folder of an earlier run's frames is refused (status 2, before anything
+runs) unless ``--overwrite`` is given.
 """
 
 from __future__ import annotations
@@ -43,6 +49,20 @@ def _positive_int(text: str) -> int:
     return n
 
 
+def _positive_seconds(text: str) -> float:
+    try:
+        t = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds, got {text!r}") from None
+    if not t > 0 or t == float("inf"):
+        raise argparse.ArgumentTypeError(f"expected a positive number of seconds, got {text!r}")
+    return t
+
+
+_OVERWRITE_HELP = ("replace an existing output (file, or a folder's frames of an earlier "
+                   "run); without it an existing output is refused and nothing runs")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``vgxsim`` command."""
     p = argparse.ArgumentParser(
@@ -58,24 +78,32 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("program", help="the program file (PROGRAM.py)")
     run.add_argument("--events", metavar="FILE", help="event script standing in for the user")
     run.add_argument("--frames", metavar="DIR_OR_FILE",
-                     help="where frames go: a directory (PNG files), a .gif or a .mp4")
+                     help="where frames go: a directory (PNG files), a .gif or a .mp4; "
+                          "written as they come, so a killed run keeps its frames")
     run.add_argument("--size", type=_size, metavar="WxH",
-                     help="size of windows opened without prefsize (default 640x512)")
+                     help="size of windows opened without prefsize (default 640x512, "
+                          "at most 16384x16384)")
     run.add_argument("--max-frames", type=_positive_int, metavar="N",
                      help="end the run after N frames")
+    run.add_argument("--timeout", type=_positive_seconds, metavar="SECONDS",
+                     help="end the run after SECONDS, whatever the program does (exit "
+                          "status 0; SIGTERM gives 143, SIGINT 130); the frames so far "
+                          "are kept and every sink completed")
     run.add_argument("--fps", type=float, default=30.0, help="video frame rate (default 30)")
+    run.add_argument("--overwrite", action="store_true", help=_OVERWRITE_HELP)
 
     render = sub.add_parser(
-        "render", help="render Heidmann's 1991 shadow scene to a PNG",
-        description="Render the scene of Heidmann's 1991 `shadows` program to one PNG.")
+        "render", help="render Heidmann's 1991 shadow scene to an image",
+        description="Render the scene of Heidmann's 1991 `shadows` program to one image.")
     render.add_argument("--out", default="heidmann1991.png", metavar="PATH",
-                        help="output PNG (default heidmann1991.png)")
+                        help="output image, .png, .jpg or .tif (default heidmann1991.png)")
     render.add_argument("--size", type=_size, default=(640, 512), metavar="WxH",
                         help="image size (default 640x512)")
     render.add_argument("--mode", choices=("objects", "volumes", "shadows"),
                         default="shadows", help="display mode (default shadows)")
     render.add_argument("--edges", choices=("all", "silhouette"), default="silhouette",
                         help="shadow-volume edges (default silhouette)")
+    render.add_argument("--overwrite", action="store_true", help=_OVERWRITE_HELP)
     return p
 
 
@@ -92,17 +120,31 @@ def _run(ns: argparse.Namespace, program_args: list[str]) -> int:
         return 2
     try:
         return run_program(ns.program, program_args, events=ns.events, frames=ns.frames,
-                           size=ns.size, max_frames=ns.max_frames, fps=ns.fps)
+                           size=ns.size, max_frames=ns.max_frames, timeout=ns.timeout,
+                           fps=ns.fps, overwrite=ns.overwrite)
     except ScriptError as exc:
         print(f"vgxsim run: bad event script: {exc}", file=sys.stderr)
         return 2
     except (SinkError, ImportError, ValueError) as exc:
         print(f"vgxsim run: cannot record frames: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:  # the events file could not be read
+        print(f"vgxsim run: cannot read the event script {ns.events}: {exc}",
+              file=sys.stderr)
+        return 2
 
 
 def _render(ns: argparse.Namespace) -> int:
-    from vgxsim.sinks import SinkError, write_png
+    from vgxsim.sinks import SinkError, to_top_down, write_image
+    from vgxsim.sinks.images import image_format
+
+    try:  # a bad name or an existing file fails before the render, not after it
+        image_format(ns.out)
+        if os.path.lexists(ns.out) and not ns.overwrite:
+            raise SinkError(f"{ns.out} exists; give --overwrite to replace it")
+    except SinkError as exc:
+        print(f"vgxsim render: {exc}", file=sys.stderr)
+        return 2
 
     try:
         from vgxsim.examples import heidmann1991
@@ -116,7 +158,7 @@ def _render(ns: argparse.Namespace) -> int:
     w, h = ns.size
     image = heidmann1991.render(w, h, ns.mode, ns.edges)
     try:
-        write_png(ns.out, image)
+        write_image(ns.out, to_top_down(image, alpha=False), overwrite=ns.overwrite)
     except SinkError as exc:
         print(f"vgxsim render: {exc}", file=sys.stderr)
         return 1

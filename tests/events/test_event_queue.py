@@ -331,3 +331,37 @@ def test_stop_step_and_max_frames():
     with pytest.raises(ScriptExhausted) as info:
         q.frame_done()
     assert info.value.reason == "max_frames"
+
+
+def test_many_ticks_at_once_are_counted_not_looped():
+    from vgxsim.events.queue import MAX_TIMER_BACKLOG
+
+    q = EventQueue()
+    q.qdevice(TIMER0)
+    q.qdevice(TIMER1)
+    q.noise(TIMER1, 7)
+    q.tick(3)  # TIMER1: 3 of its 7
+    q.tick(1_000_000_000)  # one step, whatever the count
+    assert q.ticks == 1_000_000_003
+    evs = drain(q)
+    # TIMER0 came due a billion times and TIMER1 (3 + 1e9) // 7 times: each capped
+    assert evs.count((TIMER0, 0)) == 3 + MAX_TIMER_BACKLOG
+    assert evs.count((TIMER1, 0)) == MAX_TIMER_BACKLOG
+    # the phase is kept: 1000000003 = 7 * 142857143 + 2, so TIMER1 is 2 ticks into its
+    # period and comes due again 5 ticks later
+    q.tick(4)
+    assert drain(q).count((TIMER1, 0)) == 0
+    q.tick(1)
+    assert drain(q).count((TIMER1, 0)) == 1
+
+
+def test_tick_counts_exactly_below_the_backlog():
+    q = EventQueue()
+    q.qdevice(TIMER0)
+    q.noise(TIMER0, 3)
+    q.tick(2)
+    assert len(q) == 0
+    q.tick(10)  # ticks 3, 6, 9, 12
+    assert drain(q) == [(TIMER0, 0)] * 4
+    q.tick(0)
+    assert q.ticks == 12

@@ -158,3 +158,11 @@ def test_script_drives_a_queue():
     assert q.qread() == (ESCKEY, 0)
     with pytest.raises(ScriptExhausted):
         q.qread()
+
+
+def test_non_utf8_script_names_the_file_and_line(tmp_path):
+    path = tmp_path / "latin1.events"
+    path.write_bytes(b"press LEFTMOUSE\n# caf\xe9\nrelease LEFTMOUSE\n")
+    with pytest.raises(ScriptError, match=r"latin1\.events:2: not UTF-8 text") as info:
+        load_script(path)
+    assert info.value.lineno == 2 and info.value.filename == str(path)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from vgxsim import gl
+from vgxsim.gl._core import GLValueError
 from vgxsim.gl._oldstyle import CHORD_TOLERANCE, circle_segments
 
 W, H = 64, 48
@@ -221,3 +222,42 @@ def test_getgpos_is_transformed_by_the_current_matrix(ctx):
     gl.move2i(10, 20)
     # ortho2(-0.5, 63.5, -0.5, 47.5): x_clip = (10 + 0.5) / 32 - 1, y = 20.5 / 24 - 1
     np.testing.assert_allclose(gl.getgpos(), (10.5 / 32 - 1, 20.5 / 24 - 1, 0.0, 1.0))
+
+
+@pytest.mark.parametrize("name", ["circ", "circf", "arc", "arcf"])
+def test_huge_radius_draws_a_bounded_shape(ctx, name):
+    call = getattr(gl, name)
+    angles = (0, 900) if name.startswith("arc") else ()
+    call(W / 2, H / 2, 1e17, *angles)  # ZeroDivisionError before the clamp
+    gl.gflush()
+    # a circle far past every edge: an outline lights nothing inside the window, a
+    # fill covers all of it (arcf: the quarter 0..90 degrees above-right of the centre)
+    lit = lit_pixels(ctx)
+    if name == "circf":
+        assert lit == box(0, W - 1, 0, H - 1)
+    elif name == "arcf":
+        assert lit == box(W // 2, W - 1, H // 2, H - 1)
+    else:
+        assert not lit
+
+
+@pytest.mark.parametrize("name", ["circ", "circf", "arc", "arcf"])
+@pytest.mark.parametrize("radius", [1e17, 1e300, 1.7e308])
+def test_every_finite_radius_is_finite_work(ctx, name, radius):
+    # Past ~1e15 pixels the chord formula's angle rounds to 0 (a ZeroDivisionError
+    # before); past 1e308 the radius in pixels is inf: both get a clamped count.
+    assert circle_segments(ctx, 0.0, 0.0, radius) == (1024 if radius < 1e308 else 16)
+    angles = (0, 900) if name.startswith("arc") else ()
+    with np.errstate(all="ignore"):  # the pipeline meets inf coordinates; no error
+        getattr(gl, name)(0.0, 0.0, radius, *angles)
+        gl.gflush()
+    assert ctx.read_rgba().shape == (H, W, 4)
+
+
+@pytest.mark.parametrize("name", ["circi", "circfi", "circs", "arci", "arcfi", "arcfs"])
+def test_integer_forms_take_the_largest_long_radius(ctx, name):
+    args = (0, 0, 2 ** 31 - 1) + ((0, 900) if "arc" in name else ())
+    getattr(gl, name)(*args)
+    gl.gflush()
+    with pytest.raises(GLValueError, match="32 bits"):
+        getattr(gl, name)(*(args[:2] + (2 ** 32,) + args[3:]))

@@ -215,3 +215,55 @@ def test_packrect_and_unpackrect():
                             [0x030303, 0x030303, 0x040404]]
     with pytest.raises(GLValueError, match="packrect"):
         gl.packrect(2, 2, 2, b"\x00" * 15)
+
+
+def test_huge_rectangles_cost_what_the_window_holds():
+    rgb_window(4, 3)
+    gl.lrectwrite(0, 0, 1, 0, [A, B])
+    # 8388607 x 2147483647 pixels asked for; only the window's 4x3 exist
+    gl.rectcopy(0, 0, 8388607, 2147483647, 2, 1)
+    # source (x, y) lands on (x + 2, y + 1); only (0..1, 0..1) lands inside
+    assert words(gl.lrectread(0, 0, 3, 2)) == [A, B, 0, 0,
+                                               0, 0, A, B,
+                                               0, 0, 0, 0]
+    gl.rectcopy(-(2 ** 31), -(2 ** 31), 2 ** 31 - 1, 2 ** 31 - 1, 0, 0)  # lands far away
+    assert words(gl.lrectread(0, 0, 3, 0)) == [A, B, 0, 0]
+    # a rectangle reaching far outside the window writes only the window's part
+    data = np.arange(1, 10 * 10 + 1, dtype=np.uint32).reshape(10, 10)
+    gl.lrectwrite(-3, -5, 6, 4, data.reshape(-1).tolist())
+    got = np.frombuffer(gl.lrectread(0, 0, 3, 2), "<u4").reshape(3, 4)
+    assert got.tolist() == data[5:8, 3:7].tolist()
+
+
+def test_returned_rectangles_are_bounded():
+    from vgxsim.gl._window import MAX_WINDOW_SIZE
+
+    rgb_window(4, 3)
+    n = MAX_WINDOW_SIZE
+    with pytest.raises(GLValueError, match=r"lrectread.*larger than the largest window"):
+        gl.lrectread(0, 0, n, 0)  # n + 1 pixels wide
+    with pytest.raises(GLValueError, match="does not fit in 32 bits"):
+        gl.lrectread(0, 0, 2 ** 62, 2 ** 62)
+    with pytest.raises(GLValueError, match="does not fit in 32 bits"):
+        gl.lrectread(0, 0, 2 ** 63, 2 ** 63)
+    with pytest.raises(GLValueError, match="readdisplay"):
+        gl.readdisplay(0, 0, 0, n, 0)
+    # the largest allowed read still returns every pixel asked for
+    assert len(gl.lrectread(-n + 1, 0, 0, 0)) == 4 * n
+
+
+def test_readRGB_outside_the_window_reads_nothing():
+    rgb_window(4, 3)
+    ctx = session.windows[session.current]
+    ctx.cpos, ctx.cpos_valid = (-2 ** 31, 1), True
+    assert gl.readRGB(2 ** 31 - 1) == (0, [], [], [])
+
+
+def test_read_pixels_argument_types():
+    rgb_window()
+    with pytest.raises(GLTypeError, match=r"read_pixels\(<array \(3,\)>, 'color'\): buffer"):
+        gl.read_pixels(np.zeros(3))
+    with pytest.raises(GLTypeError, match="plane must be a str"):
+        gl.read_pixels("front", ["z"])
+    with pytest.raises(GLValueError, match="buffer must be"):
+        gl.read_pixels("left")

@@ -380,3 +380,52 @@ def test_gversion_and_mode_getters():
     assert gl.getdrawmode() == GL.NORMALDRAW
     with pytest.raises(GLValueError, match=r"getgconfig\(99\)"):
         gl.getgconfig(99)
+
+
+def test_window_sizes_past_the_limit_are_refused_before_allocation():
+    from vgxsim.gl._window import MAX_WINDOW_SIZE
+
+    assert MAX_WINDOW_SIZE >= 16384
+    big = MAX_WINDOW_SIZE + 1
+    with pytest.raises(GLValueError, match=r"prefsize\(100000, 100000\).*16384x16384"):
+        gl.prefsize(100000, 100000)
+    with pytest.raises(GLValueError, match=r"prefsize\(1, 16385\)"):
+        gl.prefsize(1, big)
+    with pytest.raises(GLValueError, match="prefposition"):
+        gl.prefposition(0, big - 1, 0, 9)  # big pixels wide, inclusive bounds
+    with pytest.raises(GLValueError, match="minsize"):
+        gl.minsize(big, 1)
+    gl.prefposition(0, MAX_WINDOW_SIZE - 1, 0, 0)  # exactly the limit is a window
+    # keepaspect makes the size at winopen: refused there, nothing opened
+    session.reset()
+    session.default_size = (64, 48)
+    gl.keepaspect(1, 1000)
+    with pytest.raises(GLValueError, match=r"winopen\('tall'\).*64x64000"):
+        gl.winopen("tall")
+    assert session.windows == {}
+    session.reset()  # the failed winopen left its constraints pending, as before it
+    session.default_size = (big, 1)  # what `vgxsim run --size` would set
+    with pytest.raises(GLValueError, match="winopen"):
+        gl.winopen("wide")
+    session.default_size = (4, 4)
+    gl.winopen("w")
+    with pytest.raises(GLValueError, match="winposition"):
+        gl.winposition(0, big, 0, 3)
+    assert gl.getsize() == (4, 4)
+
+
+def test_integers_past_32_bits_are_refused():
+    with pytest.raises(GLValueError, match=r"prefsize\(2\*\*40|does not fit in 32 bits"):
+        gl.prefsize(2 ** 40, 5)
+    gl.winopen("w")
+    gl.RGBmode()
+    gl.gconfig()
+    gl.viewport(-(2 ** 31), 2 ** 32 - 1, 0, 3)  # the ends of the 32-bit range are fine
+    for bad in (2 ** 32, -(2 ** 31) - 1, 2 ** 63, np.uint64(2 ** 63)):
+        with pytest.raises(GLValueError, match="does not fit in 32 bits"):
+            gl.viewport(0, bad, 0, 3)
+    with pytest.raises(GLValueError, match=r"winset\(9223372036854775808\)"):
+        gl.winset(2 ** 63)
+    # unsigned long masks and colours are reduced modulo 2**32 as C does
+    gl.cpack(2 ** 63 + 0x10)
+    assert gl.gRGBcolor() == (0x10, 0, 0)

@@ -13,9 +13,9 @@ from vgxsim.sinks import (
     VideoSink,
     open_sink,
     to_top_down,
+    write_image,
     write_png,
 )
-from vgxsim.sinks import frames as frames_mod
 
 
 def bottom_up_image(h=4, w=5, seed=0):
@@ -72,22 +72,24 @@ def test_png_sequence_prefix_alpha_and_start(tmp_path):
         sink.write(img)  # closed
 
 
-def test_png_write_is_atomic(tmp_path, monkeypatch):
-    sink = PNGSequenceSink(tmp_path)
-    sink.write(bottom_up_image(seed=1))
-    good = (tmp_path / "frame_0000.png").read_bytes()
+def test_image_write_is_atomic(tmp_path, monkeypatch):
+    path = tmp_path / "frame_0000.png"
+    write_image(path, bottom_up_image(seed=1)[..., :3])
+    good = path.read_bytes()
 
     def broken(fh, image, extension):
         fh.write(b"\x89PNG half")
         raise RuntimeError("disk on fire")
 
     monkeypatch.setattr(iio, "imwrite", broken)
-    sink2 = PNGSequenceSink(tmp_path)
-    with pytest.raises(SinkError, match="frame_0000.png"):
-        sink2.write(bottom_up_image(seed=2))
-    assert (tmp_path / "frame_0000.png").read_bytes() == good  # old frame intact
+    with pytest.raises(SinkError, match="frame_0000.png: disk on fire"):
+        write_image(path, bottom_up_image(seed=2), overwrite=True)
+    assert path.read_bytes() == good  # old file intact
     assert sorted(os.listdir(tmp_path)) == ["frame_0000.png"]  # no temp file left
-    assert sink2.count == 0
+    sink = PNGSequenceSink(tmp_path / "frames")
+    with pytest.raises(SinkError, match="frame_0000.png"):
+        sink.write(bottom_up_image(seed=2))
+    assert os.listdir(tmp_path / "frames") == [] and sink.count == 0
 
 
 def test_write_png_single_image(tmp_path):
@@ -154,7 +156,9 @@ def test_video_without_frames_writes_nothing(tmp_path):
 
 
 def test_mp4_without_ffmpeg_names_the_package(tmp_path, monkeypatch):
-    monkeypatch.setattr(frames_mod, "_ffmpeg_available", lambda: False)
+    from vgxsim.sinks import mp4
+
+    monkeypatch.setattr(mp4, "ffmpeg_problem", lambda: "no ffmpeg in this test")
     with pytest.raises(ImportError, match="imageio-ffmpeg"):
         VideoSink(tmp_path / "m.mp4")
     assert not (tmp_path / "m.mp4").exists()

@@ -499,8 +499,16 @@ def load_script(path: str | PathLike, resolve: Resolver | None = None) -> EventS
     OSError
         If the file cannot be read.
     ScriptError
-        If it does not parse.
+        If it is not UTF-8 text or does not parse (naming the file and line).
     """
-    with open(path, encoding="utf-8") as fh:
-        text = fh.read()
+    with open(path, "rb") as fh:
+        raw = fh.read()
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        lineno = raw.count(b"\n", 0, exc.start) + 1
+        line = raw.split(b"\n")[lineno - 1]
+        raise ScriptError(str(path), lineno, line.decode("utf-8", "replace").strip(),
+                          f"not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset "
+                          f"{exc.start})") from None
     return EventSource(parse_script(text, filename=str(path), resolve=resolve))

@@ -108,7 +108,7 @@ def cpack(abgr: int) -> None:
     args = (abgr,)
     ctx = current("cpack", args)
     _need_rgb(ctx, "cpack", args)
-    w = as_int("cpack", args, "abgr", abgr) & 0xFFFFFFFF  # C unsigned long
+    w = as_int("cpack", args, "abgr", abgr, wrap=True)  # C unsigned long
     _set_rgba(ctx, tuple(((w >> s) & 0xFF) / 255.0 for s in (0, 8, 16, 24)))
 
 

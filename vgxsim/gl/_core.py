@@ -90,12 +90,31 @@ def current(name: str, args: tuple = ()):
     return session.windows[session.current]
 
 
-def as_int(name: str, args: tuple, what: str, v) -> int:
-    """An integer argument (short, long, Angle, Boolean, Device, token)."""
+#: The integers any IRIS GL argument can hold: a 32-bit ``long`` or ``unsigned long``
+#: (the largest C integer type of the 1990 API, irisgl_reference.md s.1).  Anything
+#: outside is refused, so no count or coordinate past 32 bits reaches a size
+#: computation.
+INT_MIN, INT_MAX = -(1 << 31), (1 << 32) - 1
+
+
+def as_int(name: str, args: tuple, what: str, v, *, wrap: bool = False) -> int:
+    """An integer argument (short, long, Angle, Boolean, Device, token).
+
+    Ints outside ``INT_MIN..INT_MAX`` (32-bit signed or unsigned ``long``) raise
+    GLValueError.  ``wrap=True`` is for ``unsigned long`` masks and colours, where C
+    reduces any integer modulo 2**32 (the 1991 article's ``zwritemask(0xfffffffff)``):
+    the result is that residue, 0..2**32-1, and never refused.
+    """
     if isinstance(v, (bool, np.bool_)):
         return int(v)
     if isinstance(v, (numbers.Integral, np.integer)):
-        return int(v)
+        iv = int(v)
+        if wrap:
+            return iv & INT_MAX
+        if not INT_MIN <= iv <= INT_MAX:
+            raise GLValueError(f"{describe(name, args)}: {what} {iv} does not fit in 32 "
+                               "bits (an IRIS GL long is -2**31..2**32-1)")
+        return iv
     raise GLTypeError(f"{describe(name, args)}: {what} must be an int, not "
                       f"{type(v).__name__} (IRIS GL takes an integer here)")
 

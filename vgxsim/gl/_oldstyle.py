@@ -28,11 +28,13 @@ Circles and arcs (circ(3G), arc(3G)) are approximated by chords whose maximum
 distance from the true circle is at most 1/8 pixel: a full circle of radius ``r``
 pixels (measured through the current matrix and viewport) gets
 ``n = ceil(pi / acos(1 - 0.125 / r))`` segments, clamped to 16..1024 (16 if the circle
-cannot be measured, e.g. it crosses the eye plane); an arc gets that many times its
-fraction of the circle, at least 2.  Angles are Angles (int tenths of a degree),
-measured counter-clockwise from +x; arcs go counter-clockwise from ``startang`` to
-``endang`` ("the arc from 10 degrees to 5 degrees is a nearly complete circle",
-arcf(3G)); equal angles draw nothing, angles 3600 apart a full circle.
+cannot be measured, e.g. it crosses the eye plane; 1024 for any radius too large for
+the formula in doubles, so every finite radius draws a bounded polyline); an arc
+gets that many times its fraction of the circle, at least 2.  Angles are Angles (int
+tenths of a degree), measured counter-clockwise from +x; arcs go counter-clockwise
+from ``startang`` to ``endang`` ("the arc from 10 degrees to 5 degrees is a nearly
+complete circle", arcf(3G)); equal angles draw nothing, angles 3600 apart a full
+circle.
 """
 
 from __future__ import annotations
@@ -307,16 +309,21 @@ def circle_segments(ctx, x: float, y: float, r: float) -> int:
     (see the module docstring), from its radius in pixels under the current matrix."""
     pts = np.array([[x, y, 0.0, 1.0], [x + r, y, 0.0, 1.0], [x, y + r, 0.0, 1.0]])
     view = ctx.viewing()
-    clip = apply(pts, view.mvp)
-    if not np.all(clip[:, 3] > 0):
-        return MIN_SEGMENTS
-    l, rt, b, t = view.viewport
-    win = np.stack([clip[:, 0] / clip[:, 3] * (rt - l + 1) / 2,
-                    clip[:, 1] / clip[:, 3] * (t - b + 1) / 2], axis=1)
-    r_px = float(max(np.hypot(*(win[1] - win[0])), np.hypot(*(win[2] - win[0]))))
+    with np.errstate(all="ignore"):  # huge radii overflow to inf: handled below
+        clip = apply(pts, view.mvp)
+        if not np.all(clip[:, 3] > 0):
+            return MIN_SEGMENTS
+        l, rt, b, t = view.viewport
+        win = np.stack([clip[:, 0] / clip[:, 3] * (rt - l + 1) / 2,
+                        clip[:, 1] / clip[:, 3] * (t - b + 1) / 2], axis=1)
+        r_px = float(max(np.hypot(*(win[1] - win[0])), np.hypot(*(win[2] - win[0]))))
     if not math.isfinite(r_px) or r_px <= CHORD_TOLERANCE:
         return MIN_SEGMENTS
-    n = math.ceil(math.pi / math.acos(1.0 - CHORD_TOLERANCE / r_px))
+    half_angle = math.acos(1.0 - CHORD_TOLERANCE / r_px)
+    # Past ~1e15 pixels 1 - 0.125/r rounds to 1 and the angle to 0: the clamp applies.
+    if half_angle <= math.pi / MAX_SEGMENTS:
+        return MAX_SEGMENTS
+    n = math.ceil(math.pi / half_angle)
     return max(MIN_SEGMENTS, min(MAX_SEGMENTS, n))
 
 

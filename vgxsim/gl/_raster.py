@@ -48,7 +48,7 @@ _SHORT_MAX = 0x7FFF
 
 def _u32(name: str, args: tuple, what: str, v) -> int:
     """An ``unsigned long`` argument: any int, reduced modulo 2**32 like C."""
-    return as_int(name, args, what, v) & _U32
+    return as_int(name, args, what, v, wrap=True)
 
 
 def _in_range(name: str, args: tuple, what: str, v, lo: int, hi: int, why: str = "") -> int:

@@ -11,6 +11,16 @@ turns it back into words.
 Reads see everything drawn so far (the command batch is flushed first) from the
 buffer ``readsource`` selects.  Writes (``lrectwrite``, ``rectcopy``) are queued in
 the command batch like any drawing, so they land in order with it.
+
+Rectangles and the window.  IRIS GL leaves pixels outside the window undefined
+(lrectread(3G), rectcopy(3G)); vgxsim reads them as 0 and never writes them.  The
+work of every call is clipped to the window first, so it costs what the window
+holds, never what the rectangle asks for: ``rectcopy`` of a 2**31-pixel rectangle
+in a 64x48 window copies at most 64x48 pixels.  A call that *returns* a rectangle
+(``lrectread``, ``readdisplay``) still returns every pixel asked for, as the binding
+promises, so its rectangle may be at most ``MAX_WINDOW_SIZE`` (16384) pixels a side
+(the largest window; a larger one raises GLValueError instead of a 2**62-byte
+allocation).
 """
 
 from __future__ import annotations
@@ -31,6 +41,7 @@ from ._core import (
     gl_function,
     session,
 )
+from ._window import MAX_WINDOW_SIZE
 
 __all__ = [
     "lrectread", "lrectwrite", "readRGB", "rectcopy", "readdisplay", "packrect",
@@ -68,6 +79,23 @@ def _source(ctx, name: str, args: tuple, allow_z: bool = True) -> np.ndarray:
     return ctx.colour_buffer(which)
 
 
+def _returned_size(name: str, args: tuple, x1: int, y1: int, x2: int, y2: int
+                   ) -> tuple[int, int]:
+    """(width, height) of a rectangle a call returns; each side at most
+    MAX_WINDOW_SIZE (see the module docstring)."""
+    w, h = x2 - x1 + 1, y2 - y1 + 1
+    if w > MAX_WINDOW_SIZE or h > MAX_WINDOW_SIZE:
+        raise GLValueError(f"{describe(name, args)}: a {w}x{h} rectangle is larger than "
+                           f"the largest window ({MAX_WINDOW_SIZE}x{MAX_WINDOW_SIZE}); "
+                           "read the part of the window you need")
+    return w, h
+
+
+def _clip(lo: int, hi: int, size: int) -> tuple[int, int]:
+    """The part of the inclusive range lo..hi inside 0..size-1 (empty when lo > hi)."""
+    return max(lo, 0), min(hi, size - 1)
+
+
 def _region(plane: np.ndarray, x1: int, y1: int, x2: int, y2: int) -> np.ndarray:
     """plane[y1..y2, x1..x2] with zeros where the rectangle leaves the window (pixels
     outside a window are undefined on IRIS; zero is the documented choice here)."""
@@ -93,6 +121,7 @@ def lrectread(x1: int, y1: int, x2: int, y2: int) -> bytes:
     """
     args = (x1, y1, x2, y2)
     r = _corners("lrectread", args)
+    _returned_size("lrectread", args, *r)
     ctx = current("lrectread", args)
     words = _region(_source(ctx, "lrectread", args), *r)
     return np.ascontiguousarray(words, dtype="<u4").tobytes()
@@ -171,7 +200,13 @@ def lrectwrite(x1: int, y1: int, x2: int, y2: int, data) -> None:
     ctx = current("lrectwrite", args)
     w, h = r[2] - r[0] + 1, r[3] - r[1] + 1
     words = _words("lrectwrite", args, data, w * h).reshape(h, w)
-    _write_pixels(ctx, r[0], r[1], words, np.ones((h, w), bool))
+    # Only the part inside the window can be written: clip before any per-pixel work.
+    xa, xb = _clip(r[0], r[2], ctx.width)
+    ya, yb = _clip(r[1], r[3], ctx.height)
+    if xa > xb or ya > yb:
+        return
+    part = words[ya - r[1]:yb - r[1] + 1, xa - r[0]:xb - r[0] + 1]
+    _write_pixels(ctx, xa, ya, part, np.ones(part.shape, bool))
 
 
 @gl_function(record=False)
@@ -181,7 +216,8 @@ def rectcopy(x1: int, y1: int, x2: int, y2: int, newx: int, newy: int) -> None:
     The source is the ``readsource`` buffer; the copy is made before anything is
     written, so overlapping copies work ("Self-intersecting copies work correctly").
     The destination is masked by the viewport, the screen mask and the write mask;
-    source pixels outside the window are not copied.  ``rectzoom`` is not applied.
+    source pixels outside the window, and pixels that would land outside it, are not
+    copied.  ``rectzoom`` is not applied.
     """
     args = (x1, y1, x2, y2, newx, newy)
     r = _corners("rectcopy", args, ordered=False)
@@ -189,12 +225,19 @@ def rectcopy(x1: int, y1: int, x2: int, y2: int, newx: int, newy: int) -> None:
     ny = as_int("rectcopy", args, "newy", newy)
     ctx = current("rectcopy", args)
     plane = _source(ctx, "rectcopy", args, allow_z=False)
-    words = _region(plane, *r)
     h, w = plane.shape
-    ys = np.arange(r[1], r[3] + 1)[:, None]
-    xs = np.arange(r[0], r[2] + 1)[None, :]
-    valid = (ys >= 0) & (ys < h) & (xs >= 0) & (xs < w)
-    _write_pixels(ctx, nx, ny, words.astype(np.int64), valid)
+    # Clip the source to the window, then its image at (newx, newy) to the window:
+    # only pixels that exist and land inside are copied, so the cost is bounded by
+    # the window whatever the rectangle (Python ints: no overflow).
+    xa, xb = _clip(r[0], r[2], w)
+    ya, yb = _clip(r[1], r[3], h)
+    dx, dy = nx - r[0], ny - r[1]  # source pixel (x, y) goes to (x + dx, y + dy)
+    xa, xb = max(xa, -dx), min(xb, w - 1 - dx)
+    ya, yb = max(ya, -dy), min(yb, h - 1 - dy)
+    if xa > xb or ya > yb:
+        return
+    words = plane[ya:yb + 1, xa:xb + 1].astype(np.int64)
+    _write_pixels(ctx, xa + dx, ya + dy, words, np.ones(words.shape, bool))
 
 
 @gl_function(record=False)
@@ -205,7 +248,8 @@ def readRGB(n: int) -> tuple[int, list[int], list[int], list[int]]:  # noqa: N80
     -------
     tuple
         ``(count, red, green, blue)``: count pixels were read (fewer than ``n`` when
-        the row ends at the window's right edge), and three lists of ints 0..255.
+        the row ends at the window's right edge; 0 when the position is outside the
+        window, whose pixels IRIS GL leaves undefined), and three lists of ints 0..255.
 
     Notes
     -----
@@ -231,7 +275,7 @@ def readRGB(n: int) -> tuple[int, list[int], list[int], list[int]]:  # noqa: N80
     x, y = int(round(float(cpos[0]))), int(round(float(cpos[1])))
     plane = _source(ctx, "readRGB", args, allow_z=False)
     h, w = plane.shape
-    got = 0 if not 0 <= y < h else max(0, min(count, w - x))
+    got = max(0, min(count, w - x)) if 0 <= y < h and 0 <= x < w else 0
     words = _region(plane, x, y, x + got - 1, y)[0] if got else np.zeros(0, np.uint32)
     ctx.cpos = (x + got, y) + cpos[2:]
     vl, vr, vb, vt = ctx.raster.viewport
@@ -256,23 +300,21 @@ def readdisplay(x1: int, y1: int, x2: int, y2: int, hints: int = 0) -> bytes:
     args = (x1, y1, x2, y2, hints)
     r = _corners("readdisplay", args)
     as_int("readdisplay", args, "hints", hints)
-    w, h = r[2] - r[0] + 1, r[3] - r[1] + 1
+    w, h = _returned_size("readdisplay", args, *r)
     out = np.zeros((h, w), np.uint32)
     for gid in sorted(session.windows):
         ctx = session.windows[gid]
+        ox, oy = ctx.origin if hasattr(ctx, "origin") else (0, 0)
+        # the window's part of the rectangle, in window coordinates
+        xa, xb = _clip(r[0] - ox, r[2] - ox, ctx.width)
+        ya, yb = _clip(r[1] - oy, r[3] - oy, ctx.height)
+        if xa > xb or ya > yb:
+            continue
         img = ctx.display_rgba()
         words = np.ascontiguousarray(img).view("<u4").reshape(img.shape[:2])
-        ox, oy = ctx.origin if hasattr(ctx, "origin") else (0, 0)
-        out = np.where(_mask_of(words.shape, ox, oy, r),
-                       _region(words, r[0] - ox, r[1] - oy, r[2] - ox, r[3] - oy), out)
+        out[ya + oy - r[1]:yb + oy - r[1] + 1, xa + ox - r[0]:xb + ox - r[0] + 1] = \
+            words[ya:yb + 1, xa:xb + 1]
     return np.ascontiguousarray(out, dtype="<u4").tobytes()
-
-
-def _mask_of(shape, ox: int, oy: int, r) -> np.ndarray:
-    hh, ww = shape
-    ys = np.arange(r[1], r[3] + 1)[:, None] - oy
-    xs = np.arange(r[0], r[2] + 1)[None, :] - ox
-    return (ys >= 0) & (ys < hh) & (xs >= 0) & (xs < ww)
 
 
 @gl_function(record=False)
@@ -344,8 +386,14 @@ def read_pixels(buffer: str = "front", plane: str = "color") -> np.ndarray:
         Before winopen, or for a plane the window was not configured with.
     GLValueError
         For an unknown buffer or plane name.
+    GLTypeError
+        When ``buffer`` or ``plane`` is not a str.
     """
     args = (buffer, plane)
+    for what, v in (("buffer", buffer), ("plane", plane)):
+        if not isinstance(v, str):
+            raise GLTypeError(f"{describe('read_pixels', args)}: {what} must be a str "
+                              f"naming it, not {type(v).__name__}")
     if buffer not in ("front", "back", "display"):
         raise GLValueError(f"{describe('read_pixels', args)}: buffer must be 'front', "
                            "'back' or 'display'")

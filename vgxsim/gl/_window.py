@@ -10,7 +10,12 @@ from ``session.default_size`` (640x512; ``vgxsim run --size`` sets it), brought
 within ``minsize``/``maxsize`` and to the ``keepaspect`` ratio, as a user sizing the
 window with the mouse would be held to them.  The window constraints are used up by
 ``winopen`` (winconstraints(3G)): the next window starts unconstrained.  Sizes are
-not limited to the 1280x1024 screen, so large headless renders are possible.
+not limited to the 1280x1024 screen (``getgdesc(GD_XPMAX/GD_YPMAX)``), so large
+headless renders are possible, up to :data:`MAX_WINDOW_SIZE` pixels a side (16384,
+vgxsim's limit: one 16384x16384 plane of 32-bit words is already 1 GiB).  Larger
+sizes raise GLValueError at ``prefsize``, ``prefposition``, ``winposition``,
+``minsize`` and ``winopen``/``winconstraints`` (for a size made by
+``keepaspect`` or ``vgxsim run --size``), before anything is allocated.
 
 Configuration.  A new window is in colour-map mode, single-buffered, with a 24-bit
 z-buffer and no stencil or accumulation planes (the IRIS GL defaults; the VGX always
@@ -61,6 +66,9 @@ __all__ = [
     "getscrmask", "subpixel", "frontbuffer", "backbuffer", "readsource",
 ]
 
+#: Largest window width and height in pixels (see the module docstring).
+MAX_WINDOW_SIZE = 16384
+
 ACBITS = (0, 16)  # acsize(3G) on the VGX: none or 16 bits per component (GD_BITS_ACBUF)
 ZBITS = (0, 24)  # zbsize: none or the 24-bit z-buffer (GD_BITS_NORM_ZBUFFER)
 
@@ -92,6 +100,14 @@ def _positive_pair(name: str, args: tuple) -> tuple[int, int]:
     if x <= 0 or y <= 0:
         raise GLValueError(f"{describe(name, args)}: sizes must be positive")
     return x, y
+
+
+def _check_size(name: str, args: tuple, w: int, h: int) -> tuple[int, int]:
+    """``(w, h)``, refused past MAX_WINDOW_SIZE before any plane is allocated."""
+    if w > MAX_WINDOW_SIZE or h > MAX_WINDOW_SIZE:
+        raise GLValueError(f"{describe(name, args)}: a window of {w}x{h} pixels is larger "
+                           f"than vgxsim's limit of {MAX_WINDOW_SIZE}x{MAX_WINDOW_SIZE}")
+    return w, h
 
 
 def _rect(name: str, args: tuple, order: str = "x1x2y1y2") -> tuple[int, int, int, int]:
@@ -208,6 +224,7 @@ def winopen(name: str) -> int:
     args = (name,)
     title = _string("winopen", args, "name", name)
     w, h = _initial_size()
+    _check_size("winopen", args, w, h)
     origin = session.prefposition[0::2] if session.prefposition is not None else (0, 0)
     c = dict(_pending_constraints())
     c.pop("owner", None)
@@ -291,14 +308,18 @@ def iconsize(x: int, y: int) -> None:
 def prefsize(x: int, y: int) -> None:
     """Size, in pixels, of the next window (or of the current one at
     ``winconstraints``) (prefsize(3G))."""
-    session.prefsize = _positive_pair("prefsize", (x, y))
+    args = (x, y)
+    session.prefsize = _check_size("prefsize", args, *_positive_pair("prefsize", args))
     session.prefposition = None
 
 
 @gl_function(record=False)
 def prefposition(x1: int, x2: int, y1: int, y2: int) -> None:
     """Screen rectangle of the next window, inclusive bounds (prefposition(3G))."""
-    session.prefposition = _rect("prefposition", (x1, x2, y1, y2))
+    args = (x1, x2, y1, y2)
+    r = _rect("prefposition", args)
+    _check_size("prefposition", args, r[1] - r[0] + 1, r[3] - r[2] + 1)
+    session.prefposition = r
     session.prefsize = None
 
 
@@ -311,7 +332,9 @@ def keepaspect(x: int, y: int) -> None:
 @gl_function(record=False)
 def minsize(x: int, y: int) -> None:
     """Smallest size of the next window (minsize(3G))."""
-    _pending_constraints()["minsize"] = _positive_pair("minsize", (x, y))
+    args = (x, y)
+    _pending_constraints()["minsize"] = _check_size("minsize", args,
+                                                    *_positive_pair("minsize", args))
 
 
 @gl_function(record=False)
@@ -364,6 +387,7 @@ def winconstraints() -> None:
             x1, x2, y1, y2 = session.prefposition
             ctx.origin = (x1, y1)
         w, h = _initial_size()
+        _check_size("winconstraints", (), w, h)
         _reshape(ctx, w, h)
     c = dict(_pending_constraints())
     c.pop("owner", None)
@@ -376,6 +400,7 @@ def winposition(x1: int, x2: int, y1: int, y2: int) -> None:
     """Move and reshape the current window to a screen rectangle (winposition(3G))."""
     args = (x1, x2, y1, y2)
     r = _rect("winposition", args)
+    _check_size("winposition", args, r[1] - r[0] + 1, r[3] - r[2] + 1)
     ctx = current("winposition", args)
     ctx.origin = (r[0], r[2])
     _reshape(ctx, r[1] - r[0] + 1, r[3] - r[2] + 1)

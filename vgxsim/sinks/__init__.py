@@ -14,6 +14,7 @@ from vgxsim.sinks.frames import (
     to_top_down,
     write_png,
 )
+from vgxsim.sinks.images import write_image
 
 __all__ = [
     "FrameSink",
@@ -23,5 +24,6 @@ __all__ = [
     "VideoSink",
     "open_sink",
     "to_top_down",
+    "write_image",
     "write_png",
 ]

@@ -13,22 +13,33 @@ and the screen never shows alpha, so file sinks write RGB unless asked for
   directory, each written atomically (temporary file + :func:`os.replace`), so
   a crash never leaves a half-written frame under a frame's name.
 * :class:`MemorySink` -- a list of top-row-first copies.
-* :class:`VideoSink` -- an animated GIF (imageio + pillow) or an MP4 (needs
-  the ``imageio-ffmpeg`` package; constructing one without it raises
-  ImportError naming the package).
-* :func:`open_sink` picks one from a path; :func:`write_png` writes one image.
+* :class:`VideoSink` -- an animated GIF (:mod:`vgxsim.sinks.gif`) or an MP4
+  (:mod:`vgxsim.sinks.mp4`, needs the ``imageio-ffmpeg`` package), both written
+  as the frames come.
+* :func:`open_sink` picks one from a path; :func:`write_png` writes one image
+  (:func:`vgxsim.sinks.images.write_image` any of PNG, JPEG, TIFF).
 
-Write failures raise :class:`SinkError` (an :class:`OSError`) naming the file.
+File sinks try their target when they are made, so a bad one fails before a run
+starts, and refuse to replace an earlier run's output unless asked to
+(``overwrite=True``, ``vgxsim run --overwrite``).  Write failures raise
+:class:`SinkError` (an :class:`OSError`) naming the file.
 """
 
 from __future__ import annotations
 
-import importlib.util
-import itertools
 import os
+import re
 from os import PathLike
 
 import numpy as np
+
+from vgxsim.sinks.images import (
+    SinkError,
+    check_writable_file,
+    check_writable_folder,
+    image_format,
+    write_image,
+)
 
 __all__ = [
     "FrameSink",
@@ -42,11 +53,6 @@ __all__ = [
 ]
 
 VIDEO_SUFFIXES = (".gif", ".mp4")
-_tmp_counter = itertools.count()
-
-
-class SinkError(OSError):
-    """A frame could not be written; the message names the file."""
 
 
 def _check_image(image) -> np.ndarray:
@@ -80,26 +86,6 @@ def to_top_down(image, alpha: bool = True) -> np.ndarray:
     return np.ascontiguousarray(arr[::-1])
 
 
-def _atomic_write_png(path: str, top_down: np.ndarray) -> None:
-    """Write ``top_down`` to ``path`` as PNG via a temporary file in the same folder."""
-    import imageio.v3 as iio
-
-    folder, name = os.path.split(os.path.abspath(path))
-    tmp = os.path.join(folder, f".{name}.{os.getpid()}.{next(_tmp_counter)}.tmp")
-    try:
-        with open(tmp, "xb") as fh:
-            iio.imwrite(fh, top_down, extension=".png")
-        os.replace(tmp, path)
-    except BaseException as exc:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        if isinstance(exc, Exception):
-            raise SinkError(f"cannot write PNG {path}: {exc}") from exc
-        raise
-
-
 def write_png(path: str | PathLike, rgba_bottom_up, *, alpha: bool = False) -> None:
     """Write one framebuffer image to a PNG file, top row first, atomically.
 
@@ -117,7 +103,11 @@ def write_png(path: str | PathLike, rgba_bottom_up, *, alpha: bool = False) -> N
     SinkError
         If the file cannot be written.
     """
-    _atomic_write_png(os.fspath(path), to_top_down(rgba_bottom_up, alpha=alpha))
+    path = os.fspath(path)
+    if image_format(path) != ".png":
+        raise SinkError(f"write_png: {path} must end in .png (write_image takes other "
+                        "formats)")
+    write_image(path, to_top_down(rgba_bottom_up, alpha=alpha))
 
 
 class FrameSink:
@@ -196,13 +186,20 @@ class MemorySink(FrameSink):
 
 
 class PNGSequenceSink(FrameSink):
-    """Write each frame to ``DIRECTORY/PREFIX####.png``.
+    """Write each frame to ``DIRECTORY/PREFIX####.png``, atomically.
+
+    The folder is created and tried when the sink is made (a file written and
+    removed), so an unwritable target fails before any frame.  Frame files of an
+    earlier run -- ``PREFIX<digits>.png``, also behind a ``win<gid>_`` window prefix
+    -- are refused unless ``overwrite``; with it they are all deleted at once, so the
+    folder never holds two runs' frames mixed.  Other files are left alone.  Each
+    frame is complete under its name the moment it has one (temporary file and
+    rename): a killed run leaves every frame written before the kill.
 
     Parameters
     ----------
     directory : str or path-like
-        Output folder, created (with parents) if missing.  Existing files are
-        overwritten, and files from an earlier, longer run are left alone.
+        Output folder, created (with parents) if missing.
     prefix : str
         File name prefix.
     digits : int
@@ -211,11 +208,19 @@ class PNGSequenceSink(FrameSink):
         Number of the first frame.
     alpha : bool
         Write RGBA instead of RGB.
+    overwrite : bool
+        Delete an earlier run's frame files instead of refusing the folder.
 
     Attributes
     ----------
     paths : list of str
         Files written so far, in order.
+
+    Raises
+    ------
+    SinkError
+        If the folder cannot be created or written, or holds earlier frames and
+        ``overwrite`` is False; the message names the folder.
     """
 
     def __init__(
@@ -226,6 +231,7 @@ class PNGSequenceSink(FrameSink):
         digits: int = 4,
         start: int = 0,
         alpha: bool = False,
+        overwrite: bool = False,
     ):
         super().__init__()
         self.directory = os.fspath(directory)
@@ -234,10 +240,24 @@ class PNGSequenceSink(FrameSink):
         self.start = start
         self.alpha = alpha
         self.paths: list[str] = []
-        try:
-            os.makedirs(self.directory, exist_ok=True)
-        except OSError as exc:
-            raise SinkError(f"cannot create frame directory {self.directory}: {exc}") from exc
+        check_writable_folder(self.directory)
+        stale = self.earlier_frames()
+        if stale and not overwrite:
+            raise SinkError(
+                f"frame folder {self.directory} already holds {len(stale)} frame files "
+                f"({os.path.basename(stale[0])} ...) of an earlier run; give --overwrite "
+                "(overwrite=True) to delete them, or choose another folder")
+        for path in stale:
+            try:
+                os.unlink(path)
+            except OSError as exc:
+                raise SinkError(f"cannot delete the earlier frame {path}: {exc}") from exc
+
+    def earlier_frames(self) -> list[str]:
+        """Frame files in the folder named as this sink (or a window's) names them."""
+        pattern = re.compile(rf"(win\d+_)?{re.escape(self.prefix)}\d+\.png")
+        with os.scandir(self.directory) as entries:
+            return sorted(e.path for e in entries if pattern.fullmatch(e.name))
 
     def path_for(self, index: int) -> str:
         """Return the file name of frame number ``index`` (counting from ``start``)."""
@@ -245,24 +265,25 @@ class PNGSequenceSink(FrameSink):
 
     def _write(self, image: np.ndarray) -> None:
         path = self.path_for(self.start + self.count)
-        _atomic_write_png(path, to_top_down(image, alpha=self.alpha))
+        write_image(path, to_top_down(image, alpha=self.alpha))
         self.paths.append(path)
 
 
-def _ffmpeg_available() -> bool:
-    return importlib.util.find_spec("imageio_ffmpeg") is not None
-
-
 class VideoSink(FrameSink):
-    """Write the frames as an animated GIF or an MP4 movie (RGB).
+    """Write the frames as an animated GIF or an MP4 movie (RGB), as they come.
 
-    The format follows the suffix.  GIF goes through imageio's pillow plugin
-    (colours are reduced to a 256-entry palette per frame, delays are stored in
-    10 ms units, and pillow merges identical consecutive frames).  MP4 needs the
-    ``imageio-ffmpeg`` package and is written with libx264 / yuv420p; frames of
-    odd width or height are padded by repeating the last column or row.  All
-    frames must have the same size.  The file is created at the first frame and
-    completed by :meth:`close`; a sink closed without frames writes no file.
+    The format follows the suffix.  Both are streamed: memory stays one frame
+    whatever the length of the run, and a killed run leaves a playable file of the
+    frames written so far (see :mod:`vgxsim.sinks.gif` and :mod:`vgxsim.sinks.mp4`).
+    GIF keeps up to 256 colours per frame exactly and stores delays in 10 ms units.
+    MP4 needs the ``imageio-ffmpeg`` package and is written with libx264 / yuv420p;
+    frames of odd width or height are padded by repeating the last column or row.
+    All frames must have the same size.
+
+    The target is tried when the sink is made -- its folder exists, it is not there
+    already (unless ``overwrite``), a byte written to it reaches the file system, and
+    for MP4 ffmpeg with libx264 is available -- so a bad target fails before the run.
+    The file is created at the first frame; a sink closed without frames writes none.
 
     Parameters
     ----------
@@ -270,16 +291,23 @@ class VideoSink(FrameSink):
         Output file ending in ``.gif`` or ``.mp4``; its folder must exist.
     fps : float
         Frames per second.
+    overwrite : bool
+        Replace an existing file.
 
     Raises
     ------
     ValueError
         If the suffix is neither ``.gif`` nor ``.mp4``, or ``fps`` <= 0.
     ImportError
-        For ``.mp4`` when ``imageio-ffmpeg`` is not installed.
+        For ``.mp4`` when imageio-ffmpeg (or its libx264) is not available.
+    SinkError
+        When the file cannot be written, or exists and ``overwrite`` is False.
     """
 
-    def __init__(self, path: str | PathLike, fps: float = 30):
+    def __init__(self, path: str | PathLike, fps: float = 30, *, overwrite: bool = False):
+        from vgxsim.sinks.gif import GIFStream
+        from vgxsim.sinks.mp4 import FFmpegStream, ffmpeg_problem
+
         super().__init__()
         self.path = os.fspath(path)
         self.kind = os.path.splitext(self.path)[1].lower()
@@ -287,33 +315,16 @@ class VideoSink(FrameSink):
             raise ValueError(f"VideoSink: {self.path!r} must end in .gif or .mp4")
         if not fps > 0:
             raise ValueError(f"VideoSink: fps must be > 0, got {fps}")
-        if self.kind == ".mp4" and not _ffmpeg_available():
-            raise ImportError(
-                f"writing MP4 ({self.path}) needs the 'imageio-ffmpeg' package, which is "
-                "not installed: pip install imageio-ffmpeg (or write a .gif or a PNG "
-                "directory instead)",
-                name="imageio_ffmpeg",
-            )
+        if self.kind == ".mp4":
+            problem = ffmpeg_problem()
+            if problem is not None:
+                raise ImportError(
+                    f"cannot write {self.path}: {problem}: pip install imageio-ffmpeg "
+                    "(or write a .gif or a PNG directory instead)", name="imageio_ffmpeg")
+        check_writable_file(self.path, overwrite)
         self.fps = fps
-        self._writer = None
+        self._stream = (GIFStream if self.kind == ".gif" else FFmpegStream)(self.path, fps)
         self._shape: tuple[int, ...] | None = None
-
-    def _open(self):
-        if self.kind == ".gif":
-            import imageio.v3 as iio
-
-            return iio.imopen(self.path, "w", extension=".gif")
-        import imageio.v2 as iio2
-
-        return iio2.get_writer(
-            self.path,
-            format="FFMPEG",
-            mode="I",
-            fps=self.fps,
-            codec="libx264",
-            pixelformat="yuv420p",
-            macro_block_size=1,
-        )
 
     def _write(self, image: np.ndarray) -> None:
         rgb = to_top_down(image, alpha=False)
@@ -324,17 +335,13 @@ class VideoSink(FrameSink):
                 f"{self.path}: frame {self.count} is {rgb.shape[1]}x{rgb.shape[0]}, "
                 f"earlier frames are {self._shape[1]}x{self._shape[0]}"
             )
+        if self.kind == ".mp4":
+            h, w = rgb.shape[:2]
+            if h % 2 or w % 2:
+                rgb = np.pad(rgb, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge")
         try:
-            if self._writer is None:
-                self._writer = self._open()
-            if self.kind == ".gif":
-                self._writer.write(rgb, duration=1000.0 / self.fps, loop=0)
-            else:
-                h, w = rgb.shape[:2]
-                if h % 2 or w % 2:
-                    rgb = np.pad(rgb, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge")
-                self._writer.append_data(rgb)
-        except Exception as exc:
+            self._stream.append(rgb)
+        except OSError as exc:
             raise SinkError(f"cannot write video {self.path}: {exc}") from exc
 
     def close(self) -> None:
@@ -342,15 +349,14 @@ class VideoSink(FrameSink):
         if self.closed:
             return
         super().close()
-        writer, self._writer = self._writer, None
-        if writer is not None:
-            try:
-                writer.close()
-            except Exception as exc:
-                raise SinkError(f"cannot finish video {self.path}: {exc}") from exc
+        try:
+            self._stream.close()
+        except OSError as exc:
+            raise SinkError(f"cannot finish video {self.path}: {exc}") from exc
 
 
-def open_sink(spec=None, *, fps: float = 30, prefix: str = "frame_", alpha: bool = False):
+def open_sink(spec=None, *, fps: float = 30, prefix: str = "frame_", alpha: bool = False,
+              overwrite: bool = False):
     """Choose a frame sink from a specification.
 
     Parameters
@@ -366,6 +372,9 @@ def open_sink(spec=None, *, fps: float = 30, prefix: str = "frame_", alpha: bool
         PNG file name prefix.
     alpha : bool
         PNG files keep the alpha channel.
+    overwrite : bool
+        Replace an existing video file or an earlier run's PNG frames (see the
+        sinks); without it they are refused.
 
     Returns
     -------
@@ -375,6 +384,8 @@ def open_sink(spec=None, *, fps: float = 30, prefix: str = "frame_", alpha: bool
     ------
     ValueError
         If the path is none of the above (for example ``out.png``).
+    SinkError
+        If the target cannot be written or holds an earlier run's output.
     """
     if spec is None:
         return MemorySink()
@@ -383,10 +394,10 @@ def open_sink(spec=None, *, fps: float = 30, prefix: str = "frame_", alpha: bool
     path = os.fspath(spec)
     suffix = os.path.splitext(path)[1].lower()
     if suffix in VIDEO_SUFFIXES:
-        return VideoSink(path, fps=fps)
+        return VideoSink(path, fps=fps, overwrite=overwrite)
     seps = (os.sep, os.altsep or os.sep)
     if os.path.isdir(path) or path.endswith(seps) or suffix == "":
-        return PNGSequenceSink(path, prefix, alpha=alpha)
+        return PNGSequenceSink(path, prefix, alpha=alpha, overwrite=overwrite)
     raise ValueError(
         f"open_sink: cannot tell what to write for {path!r}: give a directory "
         "(PNG frames), a .gif or .mp4 file, or None (memory)"

@@ -1,0 +1,145 @@
+"""Single image files, written atomically, and the checks every output gets first.
+
+* :func:`write_image` writes one image as PNG, JPEG or TIFF -- the format is taken
+  from the file name (``.png``; ``.jpg``/``.jpeg``; ``.tif``/``.tiff``) and any other
+  name is refused -- through a temporary file in the same folder and
+  :func:`os.replace`, so the name holds either the old file or the complete new one,
+  never half of one.  An existing file is replaced only with ``overwrite=True``.
+* :func:`check_writable_file` and :func:`check_writable_folder` try the target
+  before a run starts (a folder that is a file, a read-only or full file system, a
+  device such as ``/dev/full``), so a bad target fails at once, not after the run.
+
+Every failure raises :class:`SinkError` (an :class:`OSError`) naming the path.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+from os import PathLike
+
+import numpy as np
+
+__all__ = ["IMAGE_FORMATS", "SinkError", "write_image", "image_format",
+           "check_writable_file", "check_writable_folder", "atomic_write"]
+
+#: File name suffix -> imageio extension of the format written.
+IMAGE_FORMATS = {".png": ".png", ".jpg": ".jpg", ".jpeg": ".jpg", ".tif": ".tif",
+                 ".tiff": ".tif"}
+
+_tmp_counter = itertools.count()
+
+
+class SinkError(OSError):
+    """An output could not be written; the message names the file."""
+
+
+def _reason(exc: BaseException) -> str:
+    return exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+
+
+def image_format(path: str) -> str:
+    """The imageio extension for an image file name; SinkError when unknown."""
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix not in IMAGE_FORMATS:
+        raise SinkError(f"cannot tell the image format of {path}: the name must end in "
+                        f"{', '.join(IMAGE_FORMATS)}")
+    return IMAGE_FORMATS[suffix]
+
+
+def check_writable_folder(folder: str) -> None:
+    """Create ``folder`` if missing and prove a file can be written in it."""
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as exc:
+        raise SinkError(f"cannot create folder {folder}: {_reason(exc)}") from exc
+    probe = os.path.join(folder, f".vgxsim-probe.{os.getpid()}.{next(_tmp_counter)}")
+    try:
+        with open(probe, "xb") as fh:
+            fh.write(b"\0")
+    except OSError as exc:
+        raise SinkError(f"cannot write in folder {folder}: {_reason(exc)}") from exc
+    finally:
+        try:
+            os.unlink(probe)
+        except OSError:
+            pass
+
+
+def check_writable_file(path: str, overwrite: bool) -> None:
+    """Prove ``path`` can be written: its folder exists, it is not a folder, it does
+    not exist unless ``overwrite``, and a byte written to it reaches the file system
+    (``/dev/full`` fails here).  Leaves no file behind (an existing one is emptied,
+    which ``overwrite`` allows)."""
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise SinkError(f"cannot write {path}: its folder {folder} does not exist")
+    if os.path.isdir(path):
+        raise SinkError(f"cannot write {path}: it is a folder")
+    existed = os.path.lexists(path)
+    if existed and not overwrite:
+        raise SinkError(f"{path} exists; give --overwrite (overwrite=True) to replace it")
+    regular = not existed or os.path.isfile(path)
+    try:
+        with open(path, "wb") as fh:
+            fh.write(b"\0")
+            fh.flush()
+            if regular:  # a full file system may only say so when the data goes out
+                os.fsync(fh.fileno())
+    except OSError as exc:
+        raise SinkError(f"cannot write {path}: {_reason(exc)}") from exc
+    finally:
+        if regular and not os.path.islink(path):
+            try:
+                os.unlink(path)
+            except OSError:
+                pass
+
+
+def atomic_write(path: str, write) -> None:
+    """Call ``write(fh)`` on a temporary file beside ``path``, then rename it to
+    ``path``; on any failure the temporary file is removed and ``path`` is as before."""
+    folder, name = os.path.split(os.path.abspath(path))
+    tmp = os.path.join(folder, f".{name}.{os.getpid()}.{next(_tmp_counter)}.tmp")
+    try:
+        with open(tmp, "xb") as fh:
+            write(fh)
+        os.replace(tmp, path)
+    except BaseException as exc:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        if isinstance(exc, Exception):
+            raise SinkError(f"cannot write {path}: {_reason(exc)}") from exc
+        raise
+
+
+def write_image(path: str | PathLike, top_down: np.ndarray, *, overwrite: bool = True
+                ) -> None:
+    """Write one image, top row first, atomically, in the format its name says.
+
+    Parameters
+    ----------
+    path : str or path-like
+        ``.png``, ``.jpg``/``.jpeg`` or ``.tif``/``.tiff``; its folder must exist.
+    top_down : ndarray
+        ``uint8`` ``(H, W, 3)`` or ``(H, W, 4)``, row 0 at the top.  JPEG drops alpha.
+    overwrite : bool
+        Replace an existing file (False: an existing file raises SinkError).
+
+    Raises
+    ------
+    SinkError
+        For an unknown suffix, an existing file without ``overwrite``, or any write
+        failure; the message names the file.
+    """
+    import imageio.v3 as iio
+
+    path = os.fspath(path)
+    ext = image_format(path)
+    if not overwrite and os.path.lexists(path):
+        raise SinkError(f"{path} exists; give --overwrite (overwrite=True) to replace it")
+    if ext == ".jpg":
+        top_down = np.ascontiguousarray(top_down[..., :3])
+    atomic_write(path, lambda fh: iio.imwrite(fh, top_down, extension=ext))
