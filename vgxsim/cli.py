@@ -8,6 +8,8 @@
                           [-- PROGRAM ARGS...]
     vgxsim render [--out PATH] [--size WxH] [--mode objects|volumes|shadows]
                   [--edges all|silhouette] [--overwrite]
+    vgxsim shadows [SCENE] [-o OUT] [options]    (see vgxsim.shadow.command)
+    vgxsim convert MESH OUT.glo [-f]
 
 ``run`` executes an IRIS GL Python program headless (see :mod:`vgxsim.runner`);
 everything after ``--`` is passed to the program.  ``render`` draws Heidmann's 1991
@@ -104,6 +106,10 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--edges", choices=("all", "silhouette"), default="silhouette",
                         help="shadow-volume edges (default silhouette)")
     render.add_argument("--overwrite", action="store_true", help=_OVERWRITE_HELP)
+
+    from vgxsim.shadow.command import add_parsers  # shadows, convert
+
+    add_parsers(sub, _size, _positive_int)
     return p
 
 
@@ -192,6 +198,12 @@ def main(argv: list[str] | None = None) -> int:
         if program_args:
             parser.error("render takes no arguments after --")
         return _render(ns)
+    if ns.command in ("shadows", "convert"):
+        from vgxsim.shadow.command import run_convert, run_shadows
+
+        if program_args:
+            parser.error(f"{ns.command} takes no arguments after --")
+        return run_shadows(ns) if ns.command == "shadows" else run_convert(ns)
     parser.print_help(sys.stderr)
     return 2
 

@@ -6,12 +6,11 @@ moving the light source a small amount and accumulating the images in the soft
 shadows, we achieve accurate soft shadows."  The README adds that lights are made
 "jitterable" with a JITTER cube inside which each image picks a light position.
 
-Each image here is one frame of :class:`vgxsim.examples.heidmann1991.Shadows` with
-every light moved inside a cube of side ``jitter`` centred on its position (a
-deterministic stratified pattern, so runs repeat), accumulated with
-``acbuf(AC_ACCUMULATE, 1.0)`` (``AC_CLEAR_ACCUMULATE`` for the first), and the
-average returned with ``acbuf(AC_RETURN, 1.0 / n)`` -- the idiom of Haeberli and
-Akeley's accumulation buffer, with 16-bit components (32 x 255 fits easily).
+Each image here is one frame of :class:`vgxsim.shadow.program.Shadows` with every
+light moved inside a cube of side ``jitter`` centred on its position (a
+deterministic stratified pattern, so runs repeat), accumulated by
+:func:`vgxsim.shadow.program.accumulate` (acbuf, 16-bit components).  ``vgxsim
+shadows --soft`` uses the same accumulation with each light's own JITTER box.
 """
 
 from __future__ import annotations
@@ -19,12 +18,12 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from dataclasses import replace
 
 import numpy as np
 
-from vgxsim.examples.heidmann1991 import Shadows, _front_rgba
+from vgxsim.examples.heidmann1991 import _front_rgba
 from vgxsim.gl import *
+from vgxsim.shadow.program import Shadows, accumulate, jittered_lights
 from vgxsim.shadow.scene import Scene, default_scene
 
 
@@ -44,10 +43,7 @@ def jitter_offsets(n: int, side: float) -> np.ndarray:
 
 def jittered_scene(scene: Scene, offset) -> Scene:
     """The scene with every light moved by ``offset`` (3 floats)."""
-    lights = tuple(replace(lt, position=tuple(float(p + o) for p, o in
-                                              zip(lt.position, offset, strict=True)))
-                   for lt in scene.lights)
-    return replace(scene, lights=lights)
+    return jittered_lights(scene, offset)
 
 
 def render_soft(width: int = 640, height: int = 512, images: int = 32, jitter: float = 0.6,
@@ -75,23 +71,14 @@ def render_soft(width: int = 640, height: int = 512, images: int = 32, jitter: f
     base = scene if scene is not None else default_scene()
     prefsize(width, height)
     gid = winopen("soft shadows")
+    prog = Shadows(base, edges=edges)
     try:
-        prog = Shadows(base, edges=edges)
-        prog.config()
-        acsize(16)  # Haeberli and Akeley: 16 bits per component leave room for 32 x 255
-        gconfig()
-        zbuffer(TRUE)
-        prog.define_lighting()
-        prog.viewing()
-        for k, offset in enumerate(jitter_offsets(images, jitter)):
-            prog.scene = jittered_scene(base, offset)
-            prog.define_lighting()  # lmdef the moved lights; lmbind transforms them
-            prog.DrawFrame()
-            acbuf(AC_CLEAR_ACCUMULATE if k == 0 else AC_ACCUMULATE, 1.0)
-        acbuf(AC_RETURN, 1.0 / images)
+        prog.setup(accumulate=True)
+        accumulate(prog, jitter_offsets(images, jitter))
         swapbuffers()
         return _front_rgba()
     finally:
+        prog.teardown()
         winclose(gid)
 
 

@@ -118,17 +118,37 @@ class PointLight:
     ambient : tuple of 3 float
         The light's own AMBIENT, which the article's first pass uses ("Turn on all
         the lights for ambient light value calculation").
+    spot_direction : tuple of 3 float, optional
+        SPOTDIRECTION.
+    spot : tuple of 2 float, optional
+        SPOTLIGHT (exponent, spread angle in degrees).
+    jitter : tuple of 3 float
+        README: "JITTER specified the dimensions of a cube within which the light is
+        given a random position to simulate a non-point light source when jittering
+        is enabled"; (0, 0, 0): not jitterable.
     """
 
     name: str
     position: Vec3
     colour: Vec3
     ambient: Vec3 = (0.0, 0.0, 0.0)
+    spot_direction: Vec3 | None = None
+    spot: tuple[float, float] | None = None
+    jitter: Vec3 = (0.0, 0.0, 0.0)
+
+    @property
+    def jitterable(self) -> bool:
+        return any(j > 0 for j in self.jitter)
 
     def props(self) -> list[float]:
         """The ``lmdef(DEFLIGHT, index, props)`` list (POSITION with w = 1: local)."""
-        return [GL.LCOLOR, *self.colour, GL.AMBIENT, *self.ambient,
-                GL.POSITION, *self.position, 1.0, GL.LMNULL]
+        out = [GL.LCOLOR, *self.colour, GL.AMBIENT, *self.ambient,
+               GL.POSITION, *self.position, 1.0]
+        if self.spot_direction is not None:
+            out += [GL.SPOTDIRECTION, *self.spot_direction]
+        if self.spot is not None:
+            out += [GL.SPOTLIGHT, *self.spot]
+        return out + [GL.LMNULL]
 
 
 @dataclass(frozen=True)
@@ -169,6 +189,10 @@ class Camera:
         lookat's viewpoint and reference point.
     twist : int
         lookat's twist, tenths of a degree.
+    near_height : float, optional
+        The README's WINDOW: "the height of the viewing frustrum at the near clipping
+        plane".  When given, the projection is ``window(-w/2, w/2, -h/2, h/2, near,
+        far)`` with ``w = h * aspect`` and ``fovy`` is not used.
     """
 
     fovy: int
@@ -177,9 +201,17 @@ class Camera:
     eye: Vec3
     target: Vec3
     twist: int = 0
+    near_height: float | None = None
+
+    def frustum(self, aspect: float) -> tuple[float, float, float, float, float, float]:
+        """``window(left, right, bottom, top, near, far)`` arguments (near_height set)."""
+        h = float(self.near_height)
+        return (-0.5 * h * aspect, 0.5 * h * aspect, -0.5 * h, 0.5 * h, self.near, self.far)
 
     def projection(self, aspect: float) -> np.ndarray:
-        """The 4x4 row-vector matrix ``perspective`` loads (MPROJECTION)."""
+        """The 4x4 row-vector matrix ``perspective`` (or ``window``) loads."""
+        if self.near_height is not None:
+            return transform.frustum(*self.frustum(aspect))
         return transform.perspective(self.fovy, aspect, self.near, self.far)
 
     def modelview(self) -> np.ndarray:
@@ -216,6 +248,11 @@ class Polyhedron:
     material : SurfaceMaterial
     casts : bool
         Whether the object casts shadows (the README's MODEL; XMODEL objects do not).
+    vertex_normals : ndarray, shape (V, 3), float64, optional
+        A normal per vertex (``.glo`` files may carry them); None: one per polygon.
+    texture : str, optional
+        The scene's TEXTURE file for this object.  Read and validated by the scene
+        reader; texture application in the raster is pending (issue 8, item 7).
     """
 
     name: str
@@ -228,6 +265,8 @@ class Polyhedron:
     triangle_face: np.ndarray
     material: SurfaceMaterial = field(default_factory=SurfaceMaterial)
     casts: bool = True
+    vertex_normals: np.ndarray | None = None
+    texture: str | None = None
 
     @property
     def face_points(self) -> np.ndarray:
@@ -274,22 +313,93 @@ def _polygon_loops(mesh: trimesh.Trimesh) -> list[list[int]]:
     return loops
 
 
+def _polygon_arrays(polygons) -> tuple[np.ndarray, np.ndarray]:
+    """Polygons (an (F, K) array or a ragged list) as CSR arrays (start, verts)."""
+    if isinstance(polygons, np.ndarray) and polygons.ndim == 2:
+        f, k = polygons.shape
+        return (np.arange(f + 1, dtype=np.int64) * k,
+                np.ascontiguousarray(polygons, dtype=np.int64).reshape(-1))
+    lens = np.array([len(p) for p in polygons], dtype=np.int64)
+    start = np.zeros(len(lens) + 1, np.int64)
+    np.cumsum(lens, out=start[1:])
+    verts = (np.concatenate([np.asarray(p, np.int64) for p in polygons])
+             if len(lens) else np.zeros(0, np.int64))
+    return start, verts
+
+
+def fan_triangles(start: np.ndarray, verts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Fan triangulation of CSR polygons, counter-clockwise kept.
+
+    Returns
+    -------
+    triangles : ndarray, shape (T, 3), int64
+    triangle_face : ndarray, shape (T,), int64
+        The polygon of each triangle (triangles of a polygon are consecutive).
+    """
+    lens = np.diff(start)
+    ntri = np.maximum(lens - 2, 0)
+    face = np.repeat(np.arange(len(lens), dtype=np.int64), ntri)
+    first = np.concatenate([[0], np.cumsum(ntri)[:-1]]) if len(lens) else np.zeros(0, np.int64)
+    j = np.arange(len(face), dtype=np.int64) - np.repeat(first, ntri)  # 0 .. K-3
+    s = start[face]
+    tris = np.stack([verts[s], verts[s + j + 1], verts[s + j + 2]], axis=1)
+    return tris, face
+
+
+def newell_normals(vertices: np.ndarray, start: np.ndarray, verts: np.ndarray
+                   ) -> np.ndarray:
+    """Newell's normal of each CSR polygon (outward for CCW seen from outside), unit.
+
+    Returns
+    -------
+    ndarray, shape (F, 3), float64
+        Zero for a polygon of zero area.
+    """
+    nxt = np.arange(len(verts), dtype=np.int64) + 1
+    ends = start[1:] - 1
+    owner = np.repeat(np.arange(len(start) - 1), np.diff(start))
+    nxt[ends[np.diff(start) > 0]] = start[:-1][np.diff(start) > 0]
+    p = vertices[verts]
+    q = vertices[verts[nxt]]
+    terms = np.stack([(p[:, 1] - q[:, 1]) * (p[:, 2] + q[:, 2]),
+                      (p[:, 2] - q[:, 2]) * (p[:, 0] + q[:, 0]),
+                      (p[:, 0] - q[:, 0]) * (p[:, 1] + q[:, 1])], axis=1)
+    nrm = np.zeros((len(start) - 1, 3))
+    for c in range(3):  # bincount: a sum per polygon, much faster than np.add.at
+        nrm[:, c] = np.bincount(owner, weights=terms[:, c], minlength=len(nrm))
+    length = np.linalg.norm(nrm, axis=1, keepdims=True)
+    return np.divide(nrm, length, out=np.zeros_like(nrm), where=length > 0)
+
+
+class MeshError(ValueError):
+    """A mesh the shadow code cannot use (inconsistent winding, non-manifold edge)."""
+
+
 def polyhedron_from_polygons(vertices, polygons, name: str,
                              material: SurfaceMaterial | None = None,
-                             casts: bool = True) -> Polyhedron:
+                             casts: bool = True, *,
+                             vertex_normals: np.ndarray | None = None,
+                             texture: str | None = None) -> Polyhedron:
     """Build a :class:`Polyhedron` from outward counter-clockwise polygons.
 
-    Edge adjacency is computed from the polygons' directed edges: on a closed,
-    consistently wound mesh each edge is traversed once in each direction.
+    Edge adjacency comes from :func:`vgxsim.kernels.adjacency.edge_adjacency` (linear
+    time): on a consistently wound mesh each shared edge is traversed once in each
+    direction; an edge of only one polygon (an open mesh such as the teapot) gets -1
+    as its second polygon.
 
     Parameters
     ----------
     vertices : array_like, shape (V, 3)
-    polygons : array_like, shape (F, K), int
-        Every polygon has K vertices, counter-clockwise seen from outside.
+    polygons : array_like, shape (F, K), int, or a list of F index sequences
+        Counter-clockwise seen from outside.  Polygons of mixed sizes are
+        fan-triangulated (``Polyhedron.polygons`` is rectangular).
     name : str
     material : SurfaceMaterial, optional
     casts : bool
+    vertex_normals : array_like, shape (V, 3), optional
+        A normal per vertex (smooth shading); default: one normal per polygon.
+    texture : str, optional
+        Path of the object's texture image (kept; see :class:`Polyhedron`).
 
     Returns
     -------
@@ -297,42 +407,38 @@ def polyhedron_from_polygons(vertices, polygons, name: str,
 
     Raises
     ------
-    ValueError
-        If a directed edge occurs twice (non-manifold or inconsistent winding).
+    MeshError
+        If a directed edge occurs twice (inconsistent winding) or an edge has more
+        than two polygons (non-manifold).
     """
-    verts = np.array(vertices, dtype=np.float64)
-    polygons = np.array(polygons, dtype=np.int64)
-    # Newell normal of each polygon (outward for CCW seen from outside)
-    p = verts[polygons]
-    q = np.roll(p, -1, axis=1)
-    nrm = np.stack([((p[..., 1] - q[..., 1]) * (p[..., 2] + q[..., 2])).sum(1),
-                    ((p[..., 2] - q[..., 2]) * (p[..., 0] + q[..., 0])).sum(1),
-                    ((p[..., 0] - q[..., 0]) * (p[..., 1] + q[..., 1])).sum(1)], axis=1)
-    nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
-    owner: dict[tuple[int, int], int] = {}
-    for f, lp in enumerate(polygons.tolist()):
-        for i, a in enumerate(lp):
-            e = (a, lp[(i + 1) % len(lp)])
-            if e in owner:
-                raise ValueError(f"{name}: edge {e} traversed twice in the same direction")
-            owner[e] = f
-    edges, faces = [], []
-    for (a, b), f in owner.items():
-        g = owner.get((b, a), -1)
-        if g >= 0 and (b, a) < (a, b):
-            continue  # listed from the other side
-        edges.append((a, b))
-        faces.append((f, g))
-    order = np.lexsort(np.array(edges).T[::-1])
-    kk = polygons.shape[1]
-    tris = np.concatenate([polygons[:, [0, i, i + 1]] for i in range(1, kk - 1)], axis=0)
-    tri_face = np.concatenate([np.arange(len(polygons))] * (kk - 2))
-    o = np.argsort(tri_face, kind="stable")
-    return Polyhedron(name=name, vertices=verts, polygons=polygons, normals=nrm,
-                      edges=np.array(edges, np.int64)[order],
-                      edge_faces=np.array(faces, np.int64)[order],
-                      triangles=tris[o], triangle_face=tri_face[o],
-                      material=material or SurfaceMaterial(), casts=casts)
+    from vgxsim.kernels.adjacency import ADJ_OK, ADJ_SAME_DIRECTION, edge_adjacency
+
+    verts = np.array(vertices, dtype=np.float64).reshape(-1, 3)
+    start, flat = _polygon_arrays(polygons)
+    lens = np.diff(start)
+    if len(lens) and (lens.min() < 3 or flat.min() < 0 or flat.max() >= len(verts)):
+        raise MeshError(f"{name}: polygons need >= 3 vertex indices in 0..{len(verts) - 1}")
+    if len(lens) and lens.min() != lens.max():
+        tris, _ = fan_triangles(start, flat)
+        start, flat = _polygon_arrays(tris)
+        lens = np.diff(start)
+    kk = int(lens[0]) if len(lens) else 3
+    polys = flat.reshape(-1, kk)
+    edges, faces, status, where = edge_adjacency(start, flat)
+    if status != ADJ_OK:
+        f = int(np.searchsorted(start, where, side="right") - 1)
+        why = ("traversed twice in the same direction (inconsistent winding)"
+               if status == ADJ_SAME_DIRECTION else "shared by more than two polygons")
+        raise MeshError(f"{name}: an edge of polygon {f} is {why}")
+    tris, tri_face = fan_triangles(start, flat)
+    vn = None
+    if vertex_normals is not None:
+        vn = np.array(vertex_normals, dtype=np.float64).reshape(len(verts), 3)
+    return Polyhedron(name=name, vertices=verts, polygons=polys,
+                      normals=newell_normals(verts, start, flat),
+                      edges=edges, edge_faces=faces, triangles=tris, triangle_face=tri_face,
+                      material=material or SurfaceMaterial(), casts=casts,
+                      vertex_normals=vn, texture=texture)
 
 
 def polyhedron_from_trimesh(mesh: trimesh.Trimesh, name: str,
@@ -545,8 +651,11 @@ def default_scene() -> Scene:
                  rotate=(35.0, 40.0, 0.0), material=green),
     )
     lights = (
-        PointLight("red", (-3.5, 7.5, 1.5), (1.0, 0.25, 0.2), ambient=(0.1, 0.025, 0.02)),
-        PointLight("blue", (4.0, 6.5, 3.0), (0.25, 0.35, 1.0), ambient=(0.025, 0.035, 0.1)),
+        # README: "The lights in the default three-cube scene are jitterable"
+        PointLight("red", (-3.5, 7.5, 1.5), (1.0, 0.25, 0.2), ambient=(0.1, 0.025, 0.02),
+                   jitter=(0.6, 0.6, 0.6)),
+        PointLight("blue", (4.0, 6.5, 3.0), (0.25, 0.35, 1.0), ambient=(0.025, 0.035, 0.1),
+                   jitter=(0.6, 0.6, 0.6)),
     )
     camera = Camera(fovy=450, near=1.0, far=40.0, eye=(2.5, 4.8, 7.5),
                     target=(0.0, 0.9, 0.0))

@@ -1,0 +1,7 @@
+"""``python -m vgxsim ...``: the same as the ``vgxsim`` command."""
+
+import sys
+
+from vgxsim.cli import main
+
+sys.exit(main())

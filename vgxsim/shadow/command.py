@@ -1,0 +1,216 @@
+"""``vgxsim shadows`` and ``vgxsim convert``: the command line over :mod:`.api`.
+
+The original program was interactive (mouse trackball, pop-up menu); its
+"command-line options ... designed primarily to allow for generation of specific
+images from a shell script" (README) are what remains here, headless::
+
+    vgxsim shadows [SCENE] [-o OUT] [--size WxH] [--mode objects|volumes|mask|shadows]
+                   [--light N] [--soft [N|figure6]] [--soft-max N] [--seed N]
+                   [--rotate AZ,EL] [--translate X,Y] [--dolly D] [--spin N] [--fps F]
+                   [--subpixel on|off] [--edges silhouette|all] [--signs screen|article]
+    vgxsim convert MESH OUT [-f] [--normals none|face|vertex]
+
+SCENE is a ``.scn`` file or the name of a shipped scene (cubes, balls,
+textured_floor, dense, teapot); without it, the three cubes.  Errors in a scene or
+model name the file and line and exit with status 1; nothing is written then.
+Outputs are written atomically.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import warnings
+
+STATUS_BAD_INPUT = 1
+
+
+def _pair(text: str) -> tuple[float, float]:
+    parts = text.replace(" ", "").split(",")
+    try:
+        a, b = (float(p) for p in parts)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected two numbers A,B, got {text!r}") from None
+    return a, b
+
+
+def _soft(text: str) -> int | str:
+    from .api import SOFT_PRESETS
+
+    if text in SOFT_PRESETS:
+        return text
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected a frame count or a preset ({', '.join(SOFT_PRESETS)}), got {text!r}"
+        ) from None
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"expected at least 1 frame, got {n}")
+    return n
+
+
+def _on_off(text: str) -> bool:
+    if text.lower() not in ("on", "off"):
+        raise argparse.ArgumentTypeError(f"expected on or off, got {text!r}")
+    return text.lower() == "on"
+
+
+def add_parsers(sub, size_type, positive_int) -> None:
+    """Add the ``shadows`` and ``convert`` subcommands to the ``vgxsim`` parser."""
+    from .api import SOFT_MAX_DEFAULT
+    from .program import EDGES, MODES, SIGNS
+
+    sh = sub.add_parser(
+        "shadows", help="Heidmann's shadows program: render a .scn scene to an image",
+        description="Render a scene of Heidmann's 1991 `shadows` program (stencil shadow "
+                    "volumes) to a PNG, or a spin to a GIF/MP4.  SCENE: a .scn file or a "
+                    "shipped scene name (cubes, balls, textured_floor, dense, teapot); "
+                    "default: three cubes and a red and a blue light.")
+    sh.add_argument("scene", nargs="?", metavar="SCENE", help="scene file or shipped name")
+    sh.add_argument("-o", "--output", metavar="PATH",
+                    help="output image (default shadows.png; with --spin spin.gif)")
+    sh.add_argument("--size", type=size_type, default=(640, 512), metavar="WxH",
+                    help="image size (default 640x512)")
+    sh.add_argument("--mode", choices=MODES, default="shadows",
+                    help="display mode (README: Show Objects Only / Volumes / Mask / "
+                         "Shadows; default shadows)")
+    sh.add_argument("--light", type=int, default=0, metavar="N",
+                    help="the light whose volumes and mask are shown (default 0)")
+    sh.add_argument("--soft", type=_soft, nargs="?", const="max", default=None,
+                    metavar="N|figure6",
+                    help="soft shadows: jitter the JITTER lights and accumulate N frames "
+                         "(no N: --soft-max; figure6: the article's 32)")
+    sh.add_argument("--soft-max", type=positive_int, default=SOFT_MAX_DEFAULT, metavar="N",
+                    help=f"most frames soft shadows accumulate (default {SOFT_MAX_DEFAULT}); "
+                         "intermediate results are written after 1, 2, 4, 8, ... frames")
+    sh.add_argument("--seed", type=int, default=1991, help="jitter random seed (default 1991)")
+    sh.add_argument("--rotate", type=_pair, default=(0.0, 0.0), metavar="AZ,EL",
+                    help="turn the view: degrees of azimuth and elevation (trackball)")
+    sh.add_argument("--translate", type=_pair, default=(0.0, 0.0), metavar="X,Y",
+                    help="shift the view right and up, in scene units")
+    sh.add_argument("--dolly", type=float, default=0.0, metavar="D",
+                    help="track into (D > 0) or out of the scene, in scene units")
+    sh.add_argument("--spin", type=positive_int, metavar="N",
+                    help="a full turn in N frames, written as .gif or .mp4 (-o)")
+    sh.add_argument("--fps", type=float, default=15.0, help="spin frame rate (default 15)")
+    sh.add_argument("--subpixel", type=_on_off, default=False, metavar="on|off",
+                    help="subpixel(TRUE): keep sub-pixel vertex positions (IRIS default off: "
+                         "vertices snap to pixel centres)")
+    sh.add_argument("--edges", choices=EDGES, default="silhouette",
+                    help="shadow faces from silhouette edges or every edge")
+    sh.add_argument("--signs", choices=SIGNS, default="screen",
+                    help="INCR/DECR per face from the rasterizer's facing (screen, default) "
+                         "or the article's 3-D test (article)")
+    sh.add_argument("--no-cache", action="store_true",
+                    help="rebuild model adjacency instead of using the cache")
+
+    cv = sub.add_parser(
+        "convert", help="convert a mesh (OBJ, STL, PLY, OFF, GLB, .glo) to .glo or a cache",
+        description="Convert a mesh that trimesh reads (or a .glo) to .glo / .glo.gz, or "
+                    "to a standalone adjacency cache (.npz): the roles of the original "
+                    "bintoglo and glotopdat.")
+    cv.add_argument("mesh", metavar="MESH")
+    cv.add_argument("out", metavar="OUT", help="output .glo, .glo.gz or .npz")
+    cv.add_argument("-f", "--flip", action="store_true",
+                    help="reverse every polygon's vertex order (README's -f)")
+    cv.add_argument("--normals", choices=("none", "face", "vertex"), default="none",
+                    help="normals to store in the .glo (default none: one per polygon, "
+                         "computed when drawn)")
+
+
+def _progress(total: int):
+    from tqdm import tqdm
+
+    # disable=None: a bar only when stderr is a terminal
+    return tqdm(total=total, desc="soft shadows", unit="frame", disable=None, file=sys.stderr)
+
+
+def run_shadows(ns: argparse.Namespace) -> int:
+    """Carry out ``vgxsim shadows``; returns the exit status."""
+    from dataclasses import replace
+
+    from vgxsim.formats import FormatError
+
+    from . import api
+
+    prog = "vgxsim shadows"
+    out = ns.output or ("spin.gif" if ns.spin else "shadows.png")
+    if ns.spin and not out.lower().endswith((".gif", ".mp4")):
+        print(f"{prog}: --spin writes an animation: -o must end in .gif or .mp4, not {out!r}",
+              file=sys.stderr)
+        return 2
+    if not ns.spin and out.lower().endswith((".gif", ".mp4")):
+        print(f"{prog}: {out!r} is an animation file: add --spin N", file=sys.stderr)
+        return 2
+    folder = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(folder):
+        print(f"{prog}: the output folder {folder} does not exist", file=sys.stderr)
+        return 2
+    try:
+        scene = api.load_scene(ns.scene, use_cache=not ns.no_cache)
+    except FormatError as exc:
+        print(f"{prog}: {exc}", file=sys.stderr)
+        return STATUS_BAD_INPUT
+    if not 0 <= ns.light < len(scene.lights):
+        print(f"{prog}: --light {ns.light}: the scene has lights 0..{len(scene.lights) - 1}",
+              file=sys.stderr)
+        return 2
+    cam = api.orbit(scene.camera, ns.rotate, ns.translate, ns.dolly)
+    scene = replace(scene, camera=cam)
+    soft = 0
+    if ns.soft is not None:
+        soft = ns.soft_max if ns.soft == "max" else api._frames_for(ns.soft)
+        soft = min(soft, ns.soft_max)
+        if not any(lt.jitterable for lt in scene.lights):
+            print(f"{prog}: note: no light of this scene has JITTER, so soft shadows look "
+                  "hard", file=sys.stderr)
+    kw = dict(mode=ns.mode, size=ns.size, light=ns.light, seed=ns.seed, edges=ns.edges,
+              subpixel=ns.subpixel, signs=ns.signs)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", api.ViewpointInShadowWarning)
+        if ns.spin:
+            frames = api.render_spin(scene, ns.spin, soft=soft, **kw)
+            api.write_animation(out, frames, ns.fps)
+            what = f"{ns.spin} frames"
+        else:
+            bar = _progress(soft) if soft else None
+            checkpoints = {1 << k for k in range(16)}
+
+            def intermediate(n: int, colour) -> None:
+                if bar is not None:
+                    bar.update(1)
+                if n in checkpoints and n < soft:  # README: "intermediate results"
+                    api.write_image(out, colour)
+
+            try:
+                frame = api.render(scene, soft=soft,
+                                   on_soft_frame=intermediate if soft else None, **kw)
+            finally:
+                if bar is not None:
+                    bar.close()
+            api.write_image(out, frame.colour)
+            what = f"{soft} soft-shadow frames" if soft else f"mode {ns.mode}"
+    for w in caught:
+        if issubclass(w.category, api.ViewpointInShadowWarning):
+            print(f"{prog}: warning: {w.message}", file=sys.stderr)
+    width, height = ns.size
+    print(f"wrote {out} ({width}x{height}, {what}, {len(scene.objects)} objects, "
+          f"{len(scene.lights)} lights)")
+    return 0
+
+
+def run_convert(ns: argparse.Namespace) -> int:
+    """Carry out ``vgxsim convert``; returns the exit status."""
+    from vgxsim.formats import FormatError
+    from vgxsim.formats.convert import convert
+
+    try:
+        model = convert(ns.mesh, ns.out, flip=ns.flip, normals=ns.normals)
+    except FormatError as exc:
+        print(f"vgxsim convert: {exc}", file=sys.stderr)
+        return STATUS_BAD_INPUT
+    print(f"wrote {ns.out} ({len(model.vertices)} vertices, {len(model.poly_start) - 1} "
+          f"polygons{', reversed' if ns.flip else ''})")
+    return 0

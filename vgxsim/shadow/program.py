@@ -1,0 +1,490 @@
+# ruff: noqa: E702  (the article writes "bgnpolygon(); . . ." on one line)
+"""The ``shadows`` program of Heidmann 1991: its drawing code, as IRIS GL calls.
+
+:class:`Shadows` holds the program's state (scene, lmdef indices, display options)
+and draws one frame in each of the README's display modes:
+
+* ``'objects'`` -- "Show Objects Only": every material component, every light, no
+  shadow calculation;
+* ``'volumes'`` -- "Show Volumes": the shadow volume faces "projected away from one
+  of the light sources as semi-transparent surfaces", and the silhouette edges "as
+  solid or dotted yellow lines" (solid where visible, dotted where hidden: this
+  module's reading of "solid or dotted");
+* ``'mask'`` -- "Show Mask": the stencil counts in colour, "clear where no shadow
+  volume faces cover the scene, magenta at the pixels where you go out of shadow
+  exactly as many times as you go into it, blue at the pixels where you have gone
+  into shadow once more than you have gone out, and blue-green where you have gone
+  in two times more".  The README says this mode counts "the times gone in and the
+  times gone out, not just the running total" and so could overflow; here the top
+  stencil plane records that some face was crossed (ST_REPLACE under
+  ``swritemask``) and the planes below it count ins minus outs around their own
+  zero, which tells "clear" from "magenta" without the overflow;
+* ``'shadows'`` -- "Show Shadows": the article's code segment, transcribed line for
+  line in :meth:`Shadows.draw_shadows` (see :mod:`vgxsim.examples.heidmann1991` for
+  the corrections to the printed text and the ``faithful`` z reset).
+
+The stencil "zero" is ``1 << (getgdesc(GD_BITS_STENCIL) - 1)`` (128 with the VGX's 8
+planes), the README's "more robust approach [that] would use getgdesc
+(GD_BITS_STENCIL) to pick a zero value" instead of the hard-wired STENZERO.
+
+Objects are drawn from display objects (``makeobj`` once per object, ``callobj``
+per pass; the same polygons as immediate mode, ``display_objects=False``).  Soft
+shadows (article, Figure 6; README: "the positions of the light sources can be
+jittered and several images accumulated") are :func:`accumulate`.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from vgxsim.gl import *
+from vgxsim.shadow.scene import (
+    MATL_DIFFSPEC,
+    MATL_EMITAMBIENT,
+    MATL_FULL,
+    Scene,
+    default_scene,
+    shadow_faces,
+    silhouette_edges,
+)
+
+# Material parts DrawObjects() takes (article: DrawObjects (matl_emitambient)).
+matl_full = MATL_FULL
+matl_emitambient = MATL_EMITAMBIENT
+matl_diffspec = MATL_DIFFSPEC
+
+MODES = ("objects", "volumes", "mask", "shadows")
+EDGES = ("silhouette", "all")
+SIGNS = ("article", "screen")
+
+# README "Show Mask" colours, packed ABGR (cpack)
+MASK_MAGENTA = 0xFFFF00FF   # in == out
+MASK_BLUE = 0xFFFF0000      # one more in than out
+MASK_BLUEGREEN = 0xFFFFFF00  # two more in than out
+SILHOUETTE_YELLOW = 0xFF00FFFF
+
+
+def stencil_zero(bits: int) -> int:
+    """The stencil value that stands for a count of zero: the middle of the range,
+    so the count may go below zero (article: "using some positive number, such as
+    128, as the "zero" stencil value")."""
+    return 1 << (bits - 1) if bits > 0 else 0
+
+
+@dataclass
+class LightSlot:
+    """One scene light: ``light[i].index`` of the article is its lmdef index."""
+
+    index: int
+    position: tuple[float, float, float]
+    colour: tuple[float, float, float]
+
+
+class Shadows:
+    """The ``shadows`` program's state: scene, lmdef indices and display options.
+
+    Parameters
+    ----------
+    scene : Scene, optional
+        Default: :func:`vgxsim.shadow.scene.default_scene`.
+    mode : {'objects', 'volumes', 'mask', 'shadows'}
+    edges : {'silhouette', 'all'}
+    light : int
+        The light whose volumes the 'volumes' and 'mask' modes show.
+    faithful : bool
+        True: the article's ``zclear`` before the lit pass; False: the README's
+        program (no z reset).  See :mod:`vgxsim.examples.heidmann1991`.
+    stencil_hook : callable, optional
+        Called as ``stencil_hook(i)`` after the shadow faces of light ``i`` are drawn
+        and before its lit pass (not part of the 1991 code: lets tests and the
+        library read the stencil planes).
+    effective_zclear : bool
+        A what-if, not the article: enable z writes *before* the z reset so that it
+        takes effect.
+    display_objects : bool
+        Draw objects from display objects (True) or in immediate mode (False); both
+        issue the same polygons.
+    signs : {'article', 'screen'}
+        How a shadow face's stencil op is chosen.  'article': from the 3-D test
+        ``ingoing`` (article: "front-facing polygons will be going into shadow"),
+        one ``stencil()`` per face as printed.  'screen': from the facing the
+        rasterizer itself sees -- all faces drawn with ``backface(TRUE)`` and
+        ST_INCR, then with ``frontface(TRUE)`` and ST_DECR.  With vertices snapped to
+        pixel centres (``subpixel(FALSE)``) a nearly edge-on face can turn over on
+        screen; its 3-D sign then disagrees with the pixels it covers and leaves a
+        line of stray pixels along it (measured on the shipped ball, torus and teapot
+        scenes).  Screen signs remove them: a cause of the README's "stray pixels"
+        bug beyond the one it suspects.
+    """
+
+    def __init__(self, scene: Scene | None = None, mode: str = "shadows",
+                 edges: str = "silhouette", faithful: bool = False,
+                 stencil_hook: Callable[[int], None] | None = None,
+                 effective_zclear: bool = False, *, light: int = 0,
+                 display_objects: bool = True, signs: str = "article"):
+        if mode not in MODES:
+            raise ValueError(f"mode must be one of {MODES}, not {mode!r}")
+        if edges not in EDGES:
+            raise ValueError(f"edges must be one of {EDGES}, not {edges!r}")
+        if signs not in SIGNS:
+            raise ValueError(f"signs must be one of {SIGNS}, not {signs!r}")
+        self.signs = signs
+        self.scene = scene if scene is not None else default_scene()
+        if not 0 <= light < len(self.scene.lights):
+            raise ValueError(f"light must be 0..{len(self.scene.lights) - 1}, not {light}")
+        self.mode = mode
+        self.edges = edges
+        self.light_index = light
+        self.faithful = faithful
+        self.stencil_hook = stencil_hook
+        self.effective_zclear = effective_zclear
+        self.display_objects = display_objects
+        self.light: list[LightSlot] = []
+        self.nLights = 0
+        self.matl: list[tuple[int, int, int]] = []  # per object: lmdef index per part
+        self.MYZERO = 128  # set from getgdesc(GD_BITS_STENCIL) by config()
+        self.stencil_bits = 8
+        self._geometry: dict[int, int] = {}  # id(object) -> display object
+
+    # -- set-up (elided in the article: "/* Set up. */ . . .") -------------------------
+    def config(self, accumulate: bool = False) -> None:
+        """Frame-buffer configuration: the article's first lines, after RGBmode and
+        doublebuffer on the window just opened (``acsize(16)`` too for soft
+        shadows)."""
+        RGBmode()
+        doublebuffer()
+        if getgdesc(GD_BITS_STENCIL) == 0:            # /* This requires stencil hardware. */
+            sys.exit(1)
+        stensize(getgdesc(GD_BITS_STENCIL))           # /* Use all the stencil bitplanes. */
+        if accumulate:
+            acsize(16)  # Haeberli and Akeley: 16 bits per component leave room for 64 x 255
+        gconfig()
+        zbuffer(TRUE)                                 # /* z comparison always active. */
+        # README, Bugs: "A more robust approach would use getgdesc(GD_BITS_STENCIL) to
+        # pick a zero value" -- instead of STENZERO = 128.
+        self.stencil_bits = getgdesc(GD_BITS_STENCIL)
+        self.MYZERO = stencil_zero(self.stencil_bits)
+
+    def define_lighting(self) -> None:
+        """lmdef the light model (README's theLModel), the lights and, per object,
+        its full, emitted+ambient and diffuse+specular materials."""
+        sc = self.scene
+        lmdef(DEFLMODEL, 1, sc.lmodel.props())
+        self.light = []
+        for i, lt in enumerate(sc.lights):
+            lmdef(DEFLIGHT, i + 1, lt.props())
+            self.light.append(LightSlot(i + 1, lt.position, lt.colour))
+        self.nLights = len(self.light)
+        self.matl = []
+        for k, obj in enumerate(sc.objects):
+            idx = tuple(3 * k + 1 + part for part in (matl_full, matl_emitambient,
+                                                      matl_diffspec))
+            for part, index in zip((matl_full, matl_emitambient, matl_diffspec), idx,
+                                   strict=True):
+                lmdef(DEFMATERIAL, index, obj.material.props(part))
+            self.matl.append(idx)
+
+    def viewing(self) -> None:
+        """README: WINDOW gives near and far (and the frustum height at near), LOOKAT
+        the look-from and look-to points.  The lights are bound later under this
+        matrix, so lmbind takes their positions to eye space."""
+        cam = self.scene.camera
+        w, h = getsize()
+        reshapeviewport()
+        mmode(MVIEWING)
+        if cam.near_height is not None:
+            window(*cam.frustum(w / h))
+        else:
+            perspective(cam.fovy, w / h, cam.near, cam.far)
+        loadmatrix(np.eye(4).reshape(-1).tolist())
+        lookat(*cam.eye, *cam.target, cam.twist)
+        lmbind(LMODEL, 1)
+
+    def setup(self, accumulate: bool = False) -> None:
+        """Everything before the first frame, on the current window."""
+        self.config(accumulate)
+        self.define_lighting()
+        self.viewing()
+
+    def teardown(self) -> None:
+        """Delete the display objects this program made."""
+        for obj in self._geometry.values():
+            delobj(obj)
+        self._geometry.clear()
+
+    # -- drawing ---------------------------------------------------------------------
+    def draw_polygons(self, obj) -> None:
+        """One object's polygons (README: the .glo format "represents objects as a
+        series of gl bgnpolygon/v3f/endpolygon calls"), with a normal per face or,
+        where the model has them, per vertex."""
+        verts, vn = obj.vertices, obj.vertex_normals
+        if vn is None:
+            for f, poly in enumerate(obj.polygons):
+                bgnpolygon()
+                n3f(obj.normals[f])
+                for vi in poly:
+                    v3f(verts[vi])
+                endpolygon()
+        else:
+            for poly in obj.polygons:
+                bgnpolygon()
+                for vi in poly:
+                    n3f(vn[vi]); v3f(verts[vi])
+                endpolygon()
+
+    def _object(self, obj) -> int:
+        key = id(obj)
+        if key not in self._geometry:
+            name = genobj()
+            makeobj(name)
+            self.draw_polygons(obj)
+            closeobj()
+            self._geometry[key] = name
+        return self._geometry[key]
+
+    def DrawObjects(self, matl: int) -> None:
+        """Draw every object with the given material part bound (article:
+        ``DrawObjects (matl_emitambient)``)."""
+        for k, obj in enumerate(self.scene.objects):
+            lmbind(MATERIAL, self.matl[k][matl])
+            if self.display_objects:
+                callobj(self._object(obj))
+            else:
+                self.draw_polygons(obj)
+        lmbind(MATERIAL, 0)
+
+    def volume_faces(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """The article's ``v3= . . . ; v4= . . . ; ingoing= . . . ;`` for every edge of
+        light ``i``: (nEdges, 4, 3) faces v1, v2, v3, v4 and (nEdges,) ingoing."""
+        return shadow_faces(self.scene, i, self.edges)
+
+    def draw_faces_by_facing(self, faces: np.ndarray, ops: tuple[int, int] = (ST_INCR, ST_DECR)
+                             ) -> None:
+        """Draw shadow faces twice with culling: the front-facing ones (as the raster
+        sees them) with ``ops[0]``, the back-facing ones with ``ops[1]``."""
+        for cull, op in ((backface, ops[0]), (frontface, ops[1])):
+            cull(TRUE)
+            stencil(TRUE, 0, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, op)
+            for quad in faces:
+                bgnpolygon(); v3f(quad[0]); v3f(quad[1]); v3f(quad[2]); v3f(quad[3]); endpolygon()
+            cull(FALSE)
+
+    def draw_shadows(self) -> None:
+        """The article's code segment ("Show Shadows")."""
+        nLights, light, DrawObjects = self.nLights, self.light, self.DrawObjects
+        MYZERO = self.MYZERO                          # (the article's constant; see config)
+        # /* Draw scene w/ ambient light, setting z-buffer. */
+        for i in range(nLights):                      # /* Turn on all the lights for */
+            lmbind(LIGHT0+i, light[i].index)          # /* ambient light value calculation. */
+        zwritemask(0xffffffff)                        # /* We do want to set z values, */
+        czclear(0x00000000, getgdesc(GD_ZMAX))        # /* using the full z range. */
+        blendfunction(BF_ONE, BF_ZERO)                # /* No alpha blending. */
+        DrawObjects(matl_emitambient)                 # /* Draw all objects using only ambient */
+                                                      # /* and emitted material components. */
+        for i in range(nLights):                      # /* Turn off all the lights when done. */
+            lmbind(LIGHT0+i, 0)
+        # /* Accumulate effects of each light in the scene in turn. */
+        for i in range(nLights):
+            # /* Draw faces of shadow volumes, setting stencil planes. */
+            lmbind(LIGHT0, light[i].index)            # /* Turn on just this light. */  (LIGHTO in print)
+            sclear(MYZERO)                            # /* Reset the stencil values to "zero" */
+            zwritemask(0x0)                           # /* We aren't changing any z values */
+            wmpack(0x0)                               # /* or any color values. */
+            faces, ingoing_flags = self.volume_faces(i)
+            nEdges = len(faces) if self.signs == "article" else 0
+            if self.signs == "screen":                # (not in the article: see ``signs``)
+                self.draw_faces_by_facing(faces)
+            for iEdge in range(nEdges):               # /* For each edge in the scene, */
+                v1, v2, v3, v4 = faces[iEdge]; ingoing = ingoing_flags[iEdge]  # /* project shadow face from this edge. */
+                stencil(TRUE, 0, SF_ALWAYS, 0xff,     # /* Write stencil unconditionally, */
+                        ST_KEEP, ST_KEEP,             # /* do nothing if zbuffer test fails, */
+                        ST_INCR if ingoing else ST_DECR)  # /* otherwise, add or subtract one. */
+                bgnpolygon(); v3f(v1); v3f(v2); v3f(v3); v3f(v4); endpolygon()  # /* Draw the shadow volume face. */
+            if self.stencil_hook is not None:         # (not in the article: lets tests
+                self.stencil_hook(i)                  #  read the stencil planes)
+            # /* Add highlights for this light, constrained by stencil mask to unshadowed areas. */
+            if self.effective_zclear:                 # (what-if, not the article: unmask z so
+                zwritemask(0xffffffff)                #  that the reset below takes effect)
+            if self.faithful or self.effective_zclear:
+                zclear(getgdesc(GD_ZMAX))             # /* Reset the z-buffer contents. */  (zclear takes no argument)
+            zwritemask(0xffffffff)                    # /* Enable writing to the z- buffer and */  (printed: 0xfffffffff)
+            wmpack(0xffffffff)                        # /* the color planes. Set up to add */  (printed: 0xfffffffff)
+            blendfunction(BF_ONE, BF_ONE)             # /* highlight color to existing values. */
+            stencil(TRUE, MYZERO, SF_EQUAL, 0xff,     # /* Constrain drawing to ''zero'' areas */  (printed: Oxff)
+                    ST_KEEP, ST_KEEP, ST_KEEP)        # /* of stencil. Don't change stencil. */
+            DrawObjects(matl_diffspec)                # /* Draw lit part of object material. */
+            lmbind(LIGHT0, 0)                         # /* Leave this light off for next pass. */  (LIGHTO in print)
+        # (after the segment: leave stencil and blending off for the next frame)
+        stencil(FALSE, 0, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, ST_KEEP)
+        blendfunction(BF_ONE, BF_ZERO)
+
+    def draw_objects(self) -> None:
+        """README "Show Objects Only": one pass, every material component, all
+        lights, no shadow calculations."""
+        for i in range(self.nLights):
+            lmbind(LIGHT0+i, self.light[i].index)
+        zwritemask(0xffffffff)
+        wmpack(0xffffffff)
+        blendfunction(BF_ONE, BF_ZERO)
+        czclear(self.scene.background, getgdesc(GD_ZMAX))
+        self.DrawObjects(matl_full)
+        for i in range(self.nLights):
+            lmbind(LIGHT0+i, 0)
+
+    def draw_silhouettes(self, i: int) -> None:
+        """Yellow silhouette edges of every caster for light ``i``: solid where the
+        z-buffer shows them, dotted where hidden."""
+        lt = self.light[i]
+        blendfunction(BF_ONE, BF_ZERO)
+        zwritemask(0x0)
+        cpack(SILHOUETTE_YELLOW)
+        deflinestyle(1, 0x3333)
+        for zf, style in ((ZF_LEQUAL, 0), (ZF_GREATER, 1)):  # visible solid, hidden dotted
+            zfunction(zf)
+            setlinestyle(style)
+            for obj in self.scene.casters:
+                for v1, v2 in silhouette_edges(obj, lt.position):
+                    bgnline(); v3f(v1); v3f(v2); endline()
+        setlinestyle(0)
+        zfunction(ZF_LEQUAL)
+        zwritemask(0xffffffff)
+
+    def draw_volumes(self) -> None:
+        """README "Show Volumes": the shadow faces "projected away from one of the
+        light sources as semi-transparent surfaces", and the silhouette edges "as
+        solid or dotted yellow lines"."""
+        self.draw_objects()
+        i = self.light_index
+        lt = self.light[i]
+        faces, _ = self.volume_faces(i)
+        zwritemask(0x0)
+        blendfunction(BF_SA, BF_MSA)
+        c4f((*lt.colour, 0.3))
+        for quad in faces:
+            bgnpolygon(); v3f(quad[0]); v3f(quad[1]); v3f(quad[2]); v3f(quad[3]); endpolygon()
+        self.draw_silhouettes(i)
+
+    def draw_mask(self) -> None:
+        """README "Show Mask": the stencil after one light's shadow faces, in colour
+        (see the module docstring for how ins and outs are counted)."""
+        self.draw_objects()
+        i = self.light_index
+        crossed = 1 << (self.stencil_bits - 1)        # top plane: some face was crossed
+        zero = 1 << (self.stencil_bits - 2)           # the planes below: ins - outs
+        faces, ingoing = self.volume_faces(i)
+        zwritemask(0x0)
+        wmpack(0x0)
+        sclear(zero)
+        swritemask(crossed)
+        stencil(TRUE, crossed, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, ST_REPLACE)
+        for quad in faces:
+            bgnpolygon(); v3f(quad[0]); v3f(quad[1]); v3f(quad[2]); v3f(quad[3]); endpolygon()
+        swritemask(crossed - 1)
+        if self.signs == "screen":
+            self.draw_faces_by_facing(faces)
+        else:
+            for quad, ing in zip(faces, ingoing, strict=True):
+                stencil(TRUE, 0, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, ST_INCR if ing else ST_DECR)
+                bgnpolygon(); v3f(quad[0]); v3f(quad[1]); v3f(quad[2]); v3f(quad[3]); endpolygon()
+        if self.stencil_hook is not None:
+            self.stencil_hook(i)
+        swritemask(0xffffffff)
+        wmpack(0xffffffff)
+        self._paint_stencil(((crossed | zero, MASK_MAGENTA), (crossed | (zero + 1), MASK_BLUE),
+                             (crossed | (zero + 2), MASK_BLUEGREEN)))
+        self.draw_silhouettes(i)
+
+    def _paint_stencil(self, values: Iterable[tuple[int, int]]) -> None:
+        """Fill the window with a colour where the stencil equals each value."""
+        w, h = getsize()
+        zbuffer(FALSE)
+        pushmatrix()
+        ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
+        loadmatrix(np.eye(4).reshape(-1).tolist())
+        blendfunction(BF_ONE, BF_ZERO)
+        for value, colour in values:
+            stencil(TRUE, value, SF_EQUAL, 0xff, ST_KEEP, ST_KEEP, ST_KEEP)
+            cpack(colour)
+            rectf(0, 0, w - 1, h - 1)
+        stencil(FALSE, 0, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, ST_KEEP)
+        popmatrix()
+        self.viewing()
+        zbuffer(TRUE)
+
+    def DrawFrame(self) -> None:
+        """Draw one frame in the current display mode (README: "The main drawing
+        routine is DrawFrame(), which uses a select statement")."""
+        if self.mode == "shadows":
+            self.draw_shadows()
+        elif self.mode == "volumes":
+            self.draw_volumes()
+        elif self.mode == "mask":
+            self.draw_mask()
+        else:
+            self.draw_objects()
+
+
+# --------------------------------------------------------------------------------------
+# Soft shadows: jittered lights, accumulated in acbuf
+# --------------------------------------------------------------------------------------
+def random_offsets(scene: Scene, frames: int, seed: int = 1991) -> np.ndarray:
+    """Per frame and light, a random offset inside the light's JITTER box.
+
+    README: JITTER gives "the dimensions of a cube within which the light is given a
+    random position"; lights without JITTER stay put.
+
+    Returns
+    -------
+    ndarray, shape (frames, L, 3), float64
+    """
+    rng = np.random.default_rng(seed)
+    box = np.array([lt.jitter for lt in scene.lights], np.float64)
+    return (rng.random((frames, len(scene.lights), 3)) - 0.5) * box
+
+
+def jittered_lights(scene: Scene, offsets: np.ndarray) -> Scene:
+    """``scene`` with light ``i`` moved by ``offsets[i]`` ((L, 3) or one (3,))."""
+    off = np.broadcast_to(np.asarray(offsets, np.float64), (len(scene.lights), 3))
+    lights = tuple(replace(lt, position=tuple(float(p + o) for p, o in
+                                              zip(lt.position, d, strict=True)))
+                   for lt, d in zip(scene.lights, off, strict=True))
+    return replace(scene, lights=lights)
+
+
+def accumulate(prog: Shadows, offsets: np.ndarray,
+               on_frame: Callable[[int], None] | None = None) -> None:
+    """Draw one jittered frame per row of ``offsets`` and leave their average in the
+    colour buffer (article, Figure 6: "drawing a shadowed scene several times, each
+    time moving the light source a small amount and accumulating the images").
+
+    ``acbuf(AC_CLEAR_ACCUMULATE, 1.0)`` for the first frame, ``AC_ACCUMULATE`` for the
+    rest and ``acbuf(AC_RETURN, 1.0 / n)`` after frame ``n`` -- the idiom of Haeberli
+    and Akeley's accumulation buffer.  The window must have been configured with
+    ``prog.setup(accumulate=True)``.
+
+    Parameters
+    ----------
+    prog : Shadows
+    offsets : ndarray, shape (N, L, 3) or (N, 3)
+        Light offsets per frame.
+    on_frame : callable, optional
+        ``on_frame(n)`` after the average of the first ``n`` frames was returned to
+        the back buffer (the README's "intermediate results will be displayed").
+    """
+    base = prog.scene
+    try:
+        for k, off in enumerate(offsets):
+            prog.scene = jittered_lights(base, off)
+            prog.define_lighting()  # lmdef the moved lights; lmbind transforms them
+            prog.DrawFrame()
+            acbuf(AC_CLEAR_ACCUMULATE if k == 0 else AC_ACCUMULATE, 1.0)
+            if on_frame is not None:
+                acbuf(AC_RETURN, 1.0 / (k + 1))
+                on_frame(k + 1)
+        acbuf(AC_RETURN, 1.0 / len(offsets))
+    finally:
+        prog.scene = base
