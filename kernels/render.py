@@ -14,7 +14,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from .fragment import (
+from vgxsim.state.codes import (
+    CBLEND_ADD,
+    CBLEND_GENERAL,
+    CBLEND_REPLACE,
+    CLEAR_COLOUR,
+    CLEAR_STENCIL,
+    CLEAR_Z,
     D_CBLEND,
     D_DZFAIL,
     D_DZPASS,
@@ -26,6 +32,8 @@ from .fragment import (
     D_ZMASK,
     D_ZTEST,
     D_ZWRITE,
+    KIND_FRAGMENTS,
+    KIND_TRIANGLE,
     LO_SRC,
     MODE_COLOUR,
     MODE_GENERAL,
@@ -45,8 +53,12 @@ from .fragment import (
     S_SY1,
     S_WMPACK,
     S_ZFUNC,
+)
+
+from .fragment import (
     add_sat,
-    cmp_pass,
+    cmp_bits,
+    cmp_select,
     colour_row,
     combine,
     fragment,
@@ -59,10 +71,6 @@ from .options import inline_ir, jit
 from .raster import covers, row_span
 
 NARROW = 8  # triangles at most this many pixels wide find their spans by scanning
-KIND_TRIANGLE = 0
-KIND_FRAGMENTS = 1
-KIND_CLEAR = 2
-CLEAR_COLOUR, CLEAR_Z, CLEAR_STENCIL = 1, 2, 4
 
 
 @jit
@@ -117,7 +125,7 @@ def _triangle_rows(
     if general_only or edge_mode:
         mode = MODE_GENERAL
     colour = dv[D_RGBA] != 0
-    zfunc = st[S_ZFUNC]
+    lt, eq, gt = cmp_bits(st[S_ZFUNC])
     dpass = dv[D_DZPASS]
     dfail = dv[D_DZFAIL]
     smax = dv[D_SMAX]
@@ -145,14 +153,10 @@ def _triangle_rows(
         if mode == MODE_ZSTENCIL_ADD:
             zrow = zbuf[y]
             srow = sten[y]
-            lt = (zfunc & 1) != 0
-            eq = (zfunc & 2) != 0
-            gt = (zfunc & 4) != 0
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)  # unsigned: no negative-index wraparound, so it vectorizes
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zb = np.int64(zrow[ux])
-                passed = (lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))
+                passed = cmp_select(lt, eq, gt, zi, np.int64(zrow[ux]))
                 sv = np.int64(srow[ux]) + (dpass if passed else dfail)
                 srow[ux] = min(max(sv, 0), smax)
         elif mode == MODE_COLOUR:
@@ -167,7 +171,7 @@ def _triangle_rows(
                 ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
                 s = srow[ux]
-                if cmp_pass(zfunc, zi, np.int64(zrow[ux])):
+                if cmp_select(lt, eq, gt, zi, np.int64(zrow[ux])):
                     srow[ux] = t0[s]
                 else:
                     srow[ux] = t1[s]
@@ -176,7 +180,7 @@ def _triangle_rows(
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                if cmp_pass(zfunc, zi, np.int64(zbuf[uy, ux])):
+                if cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux])):
                     zbuf[uy, ux] = wrap_z24(zi)
         else:
             _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
@@ -208,35 +212,30 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
     buf = back[y] if st[S_DRAW_BACK] else front[y]
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
-    zfunc = st[S_ZFUNC]
-    lt = (zfunc & 1) != 0
-    eq = (zfunc & 2) != 0
-    gt = (zfunc & 4) != 0
+    lt, eq, gt = cmp_bits(st[S_ZFUNC])
     blend = dv[D_CBLEND]
     wm = st[S_WMPACK] & 0xFFFFFFFF
     keep = ~wm & 0xFFFFFFFF
     zrow = zbuf[y]
     srow = sten[y]
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
-    if ztest and blend != 2:
+    if ztest and blend != CBLEND_GENERAL:
         # Branch-free form for the common passes (z test on, replace or add blend;
         # Heidmann's ambient and lit passes): every pixel computes everything and the
         # writes select old or new values, so LLVM can vectorize the loop.
         sfunc = st[S_SFUNC]
         smask = st[S_SMASK]
         sref = st[S_SREF] & smask
-        slt = (sfunc & 1) != 0
-        seq = (sfunc & 2) != 0
-        sgt = (sfunc & 4) != 0
-        add = blend == 1
+        slt, seq, sgt = cmp_bits(sfunc)
+        add = blend == CBLEND_ADD
         if dv[D_STENCIL] != 0:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 sv = np.int64(srow[ux]) & smask
-                sok = (slt & (sref < sv)) | (seq & (sref == sv)) | (sgt & (sref > sv))
+                sok = cmp_select(slt, seq, sgt, sref, sv)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
                 zb = np.int64(zrow[ux])
-                ok = sok & ((lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb)))
+                ok = sok & cmp_select(lt, eq, gt, zi, zb)
                 zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
@@ -248,7 +247,7 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                 ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
                 zb = np.int64(zrow[ux])
-                ok = (lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))
+                ok = cmp_select(lt, eq, gt, zi, zb)
                 zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
@@ -269,10 +268,7 @@ def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     stest = dv[D_STENCIL] != 0
-    zfunc = st[S_ZFUNC]
-    lt = (zfunc & 1) != 0
-    eq = (zfunc & 2) != 0
-    gt = (zfunc & 4) != 0
+    lt, eq, gt = cmp_bits(st[S_ZFUNC])
     blend = dv[D_CBLEND]
     sf = st[S_BLEND_SF]
     df = st[S_BLEND_DF]
@@ -289,16 +285,16 @@ def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
         if ztest:
             zi = round_z(za + dzdx * (x - x0), zmin, zmax)
             zb = np.int64(zrow[ux])
-            if not ((lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))):
+            if not cmp_select(lt, eq, gt, zi, zb):
                 continue
             if zwrite:
                 zrow[ux] = wrap_z24(zi)
         dx = x - x0
         src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
         dst = np.int64(buf[ux])
-        if blend == 0:
+        if blend == CBLEND_REPLACE:
             out = src
-        elif blend == 1:
+        elif blend == CBLEND_ADD:
             out = add_sat(src, dst)
         else:
             out = combine(src, dst, sf, df, LO_SRC, 0xFFFFFFFF)

@@ -14,20 +14,23 @@ import numpy as np
 
 from vgxsim import threads
 from vgxsim.kernels.clip import snap_window
-from vgxsim.kernels.render import (
+from vgxsim.kernels.render import bin_primitives, render_bands
+from vgxsim.kernels.setup import setup_triangles
+from vgxsim.state.codes import (
     CLEAR_COLOUR,
     CLEAR_STENCIL,
     CLEAR_Z,
+    FLAT,
     KIND_CLEAR,
     KIND_FRAGMENTS,
     KIND_TRIANGLE,
-    bin_primitives,
-    render_bands,
+    ROW_SIZE,
+    S_DRAW_BACK,
+    S_DRAW_FRONT,
 )
-from vgxsim.kernels.setup import setup_triangles
 from vgxsim.state.derive import derive_states
 from vgxsim.state.planes import Framebuffer
-from vgxsim.state.raster import FLAT, ROW, ROW_SIZE, RasterState
+from vgxsim.state.raster import RasterState
 
 __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL"]
 
@@ -275,8 +278,8 @@ class CommandBatch:
             # Single-buffered: frontbuffer/backbuffer select nothing; everything drawn
             # goes to the one colour buffer (and a dummy back plane is never indexed).
             states = states.copy()
-            states[:, ROW["draw_front"]] |= states[:, ROW["draw_back"]]
-            states[:, ROW["draw_back"]] = 0
+            states[:, S_DRAW_FRONT] |= states[:, S_DRAW_BACK]
+            states[:, S_DRAW_BACK] = 0
         derived, tables = derive_states(states, fb.config.stencil, True, fb.z is not None)
         front, back, z, st = fb.kernel_planes()
         height = fb.height
