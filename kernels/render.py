@@ -131,7 +131,7 @@ def _triangle_rows(
     skip = skip_tiles and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
     if (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS:
         nruns = classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st,
-                               zbuf, tb, runs, skip, cover_blocks, work)
+                               zbuf, tb, runs, skip, cover_blocks, not edge_mode, work)
     else:
         runs[0, 0] = xlo
         runs[0, 1] = xhi

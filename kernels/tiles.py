@@ -91,7 +91,7 @@ def z_fails_everywhere(zfunc, zlo, zhi, blo, bhi):
 
 @jit
 def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, zbuf, tb,
-                   runs, skip, cover, work):
+                   runs, skip, cover, merge, work):
     """Classify the tiles of triangle ``t``'s rectangle in one band; write the runs
     of adjacent non-skipped tiles of one class into ``runs``.
 
@@ -115,6 +115,10 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, z
     skip, cover : bool
         Whether to test depth bounds (the caller has checked that the z test is on
         and z failure is a no-op) and whether to test full coverage.
+    merge : bool
+        Merge adjacent full and partial tiles into one (partial) run: for the span
+        rasterizer, which solves each row once; the edge-function rasterizer keeps
+        full runs apart to leave out their per-pixel tests.
     work : ndarray, shape (WORK_SIZE,), int64
         Work counters of this band.
 
@@ -156,8 +160,13 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, z
             work[WORK_BLOCKS_COVERED] += 1
         if cls == TILE_SKIP:
             continue
-        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and runs[nruns - 1, 2] == cls:
+        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and (
+                merge or runs[nruns - 1, 2] == cls):
+            # Span rows solve their edges once per row anyway: one long run (a long
+            # vectorized loop) beats a run per class; it is full only if all tiles are.
             runs[nruns - 1, 1] = cx1
+            if cls != runs[nruns - 1, 2]:
+                runs[nruns - 1, 2] = TILE_PARTIAL
         else:
             runs[nruns, 0] = cx0
             runs[nruns, 1] = cx1
