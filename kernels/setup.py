@@ -15,11 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from vgxsim.state.codes import CULL_BACK, CULL_FRONT
+
 from .clip import ONE
 from .options import inline, jit
-
-CULL_BACK = 1
-CULL_FRONT = 2
 
 
 @inline

@@ -14,22 +14,35 @@ import numpy as np
 
 from vgxsim import threads
 from vgxsim.kernels.clip import snap_window
-from vgxsim.kernels.render import (
+from vgxsim.kernels.render import bin_primitives, render_bands
+from vgxsim.kernels.setup import setup_triangles
+from vgxsim.state.codes import (
     CLEAR_COLOUR,
     CLEAR_STENCIL,
     CLEAR_Z,
+    FLAT,
     KIND_CLEAR,
     KIND_FRAGMENTS,
     KIND_TRIANGLE,
-    bin_primitives,
-    render_bands,
+    ROW_SIZE,
+    S_DRAW_BACK,
+    S_DRAW_FRONT,
+    WORK_BLOCKS_COVERED,
+    WORK_FRAGMENTS,
+    WORK_SIZE,
+    WORK_STENCIL_WRITES,
+    WORK_TILES_SKIPPED,
 )
-from vgxsim.kernels.setup import setup_triangles
 from vgxsim.state.derive import derive_states
 from vgxsim.state.planes import Framebuffer
-from vgxsim.state.raster import FLAT, ROW, ROW_SIZE, RasterState
+from vgxsim.state.raster import RasterState
 
-__all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL"]
+__all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL", "WORK_NAMES"]
+
+#: Names of the work counters, in the order of ``CommandBatch.counters``.
+WORK_NAMES = tuple(name for _, name in sorted([
+    (WORK_FRAGMENTS, "fragments"), (WORK_TILES_SKIPPED, "tiles_skipped"),
+    (WORK_BLOCKS_COVERED, "blocks_covered"), (WORK_STENCIL_WRITES, "stencil_writes")]))
 
 # Bands are 2**shift rows, 32 to 256.  Tall bands keep the triangle records a band
 # reads dense in memory (many small triangles are latency-bound on those reads);
@@ -64,15 +77,42 @@ class CommandBatch:
     ----------
     framebuffer : Framebuffer
         Where a flush renders to.
+
+    Attributes
+    ----------
+    edge_mode, general_only : bool
+        Test switches: the edge-function rasterizer; no fast span paths.
+    skip_tiles, cover_blocks : bool
+        Exact work skipping (vgxsim/kernels/tiles.py; on by default): skip tiles
+        whose depth bounds fail the z test for a whole triangle; run tiles fully
+        inside a triangle without edge tests.  Switching either off changes no pixel.
+        Class attributes: set them on ``CommandBatch`` to switch every batch.
+    counters : ndarray, shape (4,), int64
+        Work done since the batch was made or :meth:`reset_counters`, in the order
+        of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
+        covered without edge tests, fragments of passes that may write stencil.
+        :meth:`work` gives them by name.
     """
+
+    skip_tiles = True
+    cover_blocks = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
-        self.edge_mode = False  # test switch: edge-function rasterizer
-        self.general_only = False  # test switch: no fast span paths
+        self.edge_mode = False
+        self.general_only = False
+        self.counters = np.zeros(WORK_SIZE, np.int64)
         self.flushes = 0
         self._allocate()
         self._reset()
+
+    def reset_counters(self) -> None:
+        """Zero the work counters."""
+        self.counters[:] = 0
+
+    def work(self) -> dict[str, int]:
+        """The work counters by name (see ``counters``)."""
+        return {name: int(v) for name, v in zip(WORK_NAMES, self.counters, strict=True)}
 
     def _allocate(self) -> None:
         """The batch's arrays, grown on demand and kept across flushes (a frame of
@@ -190,8 +230,14 @@ class CommandBatch:
             self.ntris = setup_triangles(xf, yf, zw, colv, tris, src, flatv, s, rs.cull, flat,
                                          want_colour, *out, start)
         refs = np.arange(start, self.ntris, dtype=np.int64)
-        self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
-                        self.t_box[start:self.ntris, 3])
+        # Bin by the rows the triangle can touch inside the raster rectangle, so bands
+        # outside the scissor (a light's scissor rectangle) never see it.
+        box = self.t_box[start:self.ntris]
+        sx0, sx1, sy0, sy1 = rs.scissor
+        y0 = np.maximum(box[:, 2], sy0)
+        y1 = np.minimum(box[:, 3], sy1)
+        y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0) | (box[:, 0] > box[:, 1])] = -1
+        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
         self._maybe_flush()
         return self.ntris - start
 
@@ -275,8 +321,8 @@ class CommandBatch:
             # Single-buffered: frontbuffer/backbuffer select nothing; everything drawn
             # goes to the one colour buffer (and a dummy back plane is never indexed).
             states = states.copy()
-            states[:, ROW["draw_front"]] |= states[:, ROW["draw_back"]]
-            states[:, ROW["draw_back"]] = 0
+            states[:, S_DRAW_FRONT] |= states[:, S_DRAW_BACK]
+            states[:, S_DRAW_BACK] = 0
         derived, tables = derive_states(states, fb.config.stencil, True, fb.z is not None)
         front, back, z, st = fb.kernel_planes()
         height = fb.height
@@ -284,12 +330,14 @@ class CommandBatch:
         shift = band_shift(height, nthreads)
         nbands = (height + (1 << shift) - 1) >> shift
         starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
+        work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
         args = (
             starts, items, shift, height, self.p_kind, self.p_ref,
             self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state,
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
+            self.skip_tiles, self.cover_blocks, work,
         )
         nthreads = min(nthreads, nbands)
         if nthreads == 1:
@@ -303,5 +351,6 @@ class CommandBatch:
             futures = [pool.submit(render_bands, b, nbands, *args) for b in range(nbands)]
             for f in futures:
                 f.result()
+        self.counters += work.sum(axis=0)
         self.flushes += 1
         self._reset()
