@@ -98,12 +98,21 @@ def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     cx, cy, cz, cw = _vertex(tris, k, 2, kx, ky, kz, okx, oky, okz, sx, sy, sz)
     u = cx * by - cy * bx
     v = ax * cy - ay * cx
+    if (u < 0.0 and v > 0.0) or (u > 0.0 and v < 0.0):
+        return False, 0.0, 0  # the common miss, decided before W
     w = bx * ay - by * ax
-    su = _edge_sign(u, bx, by, bw, cx, cy, cw)
-    sv = _edge_sign(v, cx, cy, cw, ax, ay, aw)
-    sw = _edge_sign(w, ax, ay, aw, bx, by, bw)
-    if su == 0 or su != sv or su != sw:
+    if u > 0.0 and v > 0.0 and w > 0.0:
+        su = 1
+    elif u < 0.0 and v < 0.0 and w < 0.0:
+        su = -1
+    elif u != 0.0 and v != 0.0 and w != 0.0:
         return False, 0.0, 0
+    else:  # some edge function is exactly 0: the tie rule decides
+        su = _edge_sign(u, bx, by, bw, cx, cy, cw)
+        sv = _edge_sign(v, cx, cy, cw, ax, ay, aw)
+        sw = _edge_sign(w, ax, ay, aw, bx, by, bw)
+        if su == 0 or su != sv or su != sw:
+            return False, 0.0, 0
     den = u * aw + v * bw + w * cw
     if den == 0.0:
         return False, 0.0, 0
@@ -118,8 +127,8 @@ def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
     ``(lo - o) * (1/d)``) and a zero direction component is a containment test, so
     the test never culls a ray that meets the box; infinite bounds are fine.
     """
-    tn = t0
-    tf = t1
+    tn = -np.inf
+    tf = np.inf
     for c in range(3):
         if c == 0:
             o, d, inv = ox, dx, ix
@@ -135,20 +144,28 @@ def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
         b = (hi[node, c] - o) * inv
         if a > b:
             a, b = b, a
-        a -= abs(a) * 1e-15
-        b += abs(b) * 1e-15
         if a > tn:
             tn = a
         if b < tf:
             tf = b
+    # widening the max of the entries equals the max of the widened entries
+    # (x - |x| c is increasing), so once per box is enough
+    tn -= abs(tn) * 1e-15
+    tf += abs(tf) * 1e-15
+    if t0 > tn:
+        tn = t0
+    if t1 < tf:
+        tf = t1
     return tn <= tf, tn
 
 
 @inline
-def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
+def _closest(bvh, stack, stack_t, ox, oy, oz, dx, dy, dz, t0, t1):
     """Nearest hit with t0 <= t <= t1: (caller's triangle index or -1, t).
 
-    Ties in t go to the lowest caller index, whatever the tree's order."""
+    Ties in t go to the lowest caller index, whatever the tree's order.  Nodes wait
+    on the stack with their entry parameter and are dropped when a hit found since
+    is nearer."""
     best = -1
     bt = t1
     if bvh.lo.shape[0] == 0:
@@ -161,13 +178,16 @@ def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
     iy = 1.0 / dy if dy != 0.0 else 0.0
     iz = 1.0 / dz if dz != 0.0 else 0.0
     lo, hi, first, count, tris, index = bvh.lo, bvh.hi, bvh.first, bvh.count, bvh.tris, bvh.index
-    ok, _ = _box(lo, hi, 0, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
+    ok, tn = _box(lo, hi, 0, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
     if not ok:
         return best, np.inf
     stack[0] = 0
+    stack_t[0] = tn
     sp = 1
     while sp > 0:
         sp -= 1
+        if stack_t[sp] > bt:
+            continue
         node = stack[sp]
         cnt = count[node]
         if cnt > 0:
@@ -186,16 +206,22 @@ def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
         if hl and hr:
             if tl <= tr:  # nearer child popped first
                 stack[sp] = left + 1
+                stack_t[sp] = tr
                 stack[sp + 1] = left
+                stack_t[sp + 1] = tl
             else:
                 stack[sp] = left
+                stack_t[sp] = tl
                 stack[sp + 1] = left + 1
+                stack_t[sp + 1] = tr
             sp += 2
         elif hl:
             stack[sp] = left
+            stack_t[sp] = tl
             sp += 1
         elif hr:
             stack[sp] = left + 1
+            stack_t[sp] = tr
             sp += 1
     if best < 0:
         return best, np.inf
@@ -279,8 +305,9 @@ def closest_hits(bvh, origin, direction, t0, t1, r0, r1, out_tri, out_t):
         Its parameter, inf for none.
     """
     stack = np.empty(STACK_SIZE, dtype=np.int64)
+    stack_t = np.empty(STACK_SIZE)
     for r in range(r0, r1):
-        k, t = _closest(bvh, stack, origin[r, 0], origin[r, 1], origin[r, 2],
+        k, t = _closest(bvh, stack, stack_t, origin[r, 0], origin[r, 1], origin[r, 2],
                         direction[r, 0], direction[r, 1], direction[r, 2], t0, t1)
         out_tri[r] = k
         out_t[r] = t
