@@ -11,8 +11,9 @@ Measured side by side in one run, medians of ``--rounds``:
   ``counts=False`` path) and the whole :func:`vgxsim.shadow.raycast.raycast` frame
   (visible surface, counts along every segment, face crossings), on 1 and 2 worker
   threads;
-* embreex (Embree 4, float32) on the same primary and shadow rays, when it is
-  installed -- an optional speed anchor, not a dependency (``pip install embreex``).
+* embreex (Embree 4, float32, one thread) on the same primary and shadow rays, when
+  it is installed -- an optional speed anchor, not a dependency
+  (``pip install vgxsim[raycast-bench]``).
 
 The target (issue 9) is >= 5 M rays/s on two cores on the 50 k-triangle scene;
 it is reported, never asserted.  The machine is shared: numbers are noisy.
@@ -112,7 +113,7 @@ def measure(scene: Scene, w: int, h: int, rounds: int) -> dict:
         f = median(lambda th=th: raycast(scene, w, h, threads=th), max(1, rounds // 2))
         res[f"frame_s_{th}t"] = f
         res[f"frame_Mrays_s_{th}t"] = (2 * n + nseg) / f / 1e6  # eye, crossings, shadow
-    res["lit_fraction"] = float(outs[0][hit].mean()) if hit.any() else 0.0
+    res["shadowed_fraction"] = float(outs[0][hit].mean()) if hit.any() else 0.0
     res.update(embree(tris, casts, o, d, pts[hit], lights, rounds, n, nseg))
     return res
 
