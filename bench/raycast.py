@@ -29,7 +29,7 @@ import time
 import numpy as np
 import trimesh
 
-from vgxsim.kernels.raycast import closest_hits, shadow_segments
+from vgxsim.kernels.raycast import closest_hits, no_window, shadow_segments
 from vgxsim.shadow import (
     Camera,
     PointLight,
@@ -91,10 +91,11 @@ def measure(scene: Scene, w: int, h: int, rounds: int) -> dict:
             lambda sah=sah: trees.__setitem__(sah, scene_bvh(t4, sah=sah)), rounds)
     idx = np.empty(n, np.int64)
     t = np.empty(n)
+    win = no_window()
     for sah in (True, False):
         for th in (1, 2):
-            s = median(lambda th=th, sah=sah: run_bands(closest_hits, n, th, trees[sah], o, d,
-                                                         0.0, 1.0, (idx, t)), rounds)
+            s = median(lambda th=th, sah=sah: run_bands(closest_hits, n, th, trees[sah], win, o,
+                                                         d, 0.0, 1.0, (idx, t)), rounds)
             res[f"primary_Mrays_s_{'sah' if sah else 'median'}_{th}t"] = n / s / 1e6
     hit = idx >= 0
     pts = np.ascontiguousarray(np.where(hit[:, None], o + np.where(hit, t, 0)[:, None] * d, 0))

@@ -36,6 +36,8 @@ All ray parameter intervals are closed: ``t0 <= t <= t1``.
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 
 from .bvh import STACK_SIZE
@@ -119,6 +121,74 @@ def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     return True, (u * az + v * bz + w * cz) / den, su
 
 
+#: Eye rays through pixel centres tested in window space, as the rasterizer does
+#: (docs/numeric_model.md section 3), for triangles whose three vertices it snaps
+#: without clipping.  ``width``: the image width (ray r is pixel ``(r % width,
+#: r // width)``), 0 for none; ``fx, fy``: (T, 3) int64 fixed-point window
+#: coordinates (1/256 px) by caller index; ``exact``: (T,) bool, which triangles.
+Window = namedtuple("Window", ["width", "fx", "fy", "exact"])
+
+
+def no_window() -> Window:
+    """A :data:`Window` that tests every triangle in 3-D."""
+    return Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
+                  np.zeros(0, np.bool_))
+
+
+@inline
+def _edge_covers(xi, yi, xj, yj, px, py):
+    """Rasterizer edge test: E > 0, or E == 0 on an inclusive (left/bottom) edge."""
+    e = (xj - xi) * (py - yi) - (yj - yi) * (px - xi)
+    if e > 0:
+        return True
+    if e < 0:
+        return False
+    return (yj - yi) < 0 or ((yj == yi) and (xj > xi))
+
+
+@inline
+def _window_covers(win, idx, r):
+    """The rasterizer's coverage of pixel r by triangle idx (exact integers)."""
+    px = (r % win.width) * 256
+    py = (r // win.width) * 256
+    x0, y0 = win.fx[idx, 0], win.fy[idx, 0]
+    x1, y1 = win.fx[idx, 1], win.fy[idx, 1]
+    x2, y2 = win.fx[idx, 2], win.fy[idx, 2]
+    area2 = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+    if area2 == 0:
+        return False
+    if area2 < 0:
+        x1, y1, x2, y2 = x2, y2, x1, y1
+    return (_edge_covers(x0, y0, x1, y1, px, py) and _edge_covers(x1, y1, x2, y2, px, py)
+            and _edge_covers(x2, y2, x0, y0, px, py))
+
+
+@inline
+def _plane_t(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
+    """(ok, t) where the ray meets triangle k's plane (ok False if parallel)."""
+    ax, ay, az, aw = _vertex(tris, k, 0, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    bx, by, bz, bw = _vertex(tris, k, 1, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    cx, cy, cz, cw = _vertex(tris, k, 2, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    u = cx * by - cy * bx
+    v = ax * cy - ay * cx
+    w = bx * ay - by * ax
+    den = u * aw + v * bw + w * cw
+    if den == 0.0:
+        return False, 0.0
+    return True, (u * az + v * bz + w * cz) / den
+
+
+@inline
+def _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz):
+    """(hit, t): window-space coverage when ``win`` covers triangle idx, else 3-D."""
+    if win.width > 0 and win.exact[idx]:
+        if not _window_covers(win, idx, r):
+            return False, 0.0
+        return _plane_t(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    return hit, t
+
+
 @inline
 def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
     """(hit, t_enter): the ray meets the node's box within [t0, t1] (conservative).
@@ -160,7 +230,7 @@ def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
 
 
 @inline
-def _closest(bvh, stack, stack_t, ox, oy, oz, dx, dy, dz, t0, t1):
+def _closest(bvh, win, r, stack, stack_t, ox, oy, oz, dx, dy, dz, t0, t1):
     """Nearest hit with t0 <= t <= t1: (caller's triangle index or -1, t).
 
     Ties in t go to the lowest caller index, whatever the tree's order.  Nodes wait
@@ -193,9 +263,9 @@ def _closest(bvh, stack, stack_t, ox, oy, oz, dx, dy, dz, t0, t1):
         if cnt > 0:
             f = first[node]
             for k in range(f, f + cnt):
-                hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                idx = index[k]
+                hit, t = _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz)
                 if hit and t >= t0 and t <= bt:
-                    idx = index[k]
                     if t < bt or best < 0 or idx < best:
                         bt = t
                         best = idx
@@ -229,8 +299,8 @@ def _closest(bvh, stack, stack_t, ox, oy, oz, dx, dy, dz, t0, t1):
 
 
 @inline
-def _all_hits(bvh, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1, exclude,
-              any_hit):
+def _all_hits(bvh, win, r, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1,
+              exclude, any_hit):
     """Caller indices of every triangle hit with t0 <= t <= t1 (``exclude`` left out),
     written to ``hits``; returns how many (at most 1 when ``any_hit``).
 
@@ -264,7 +334,7 @@ def _all_hits(bvh, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1, exc
                 if idx == exclude or mark[idx] == stamp:
                     continue
                 mark[idx] = stamp
-                hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                hit, t = _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz)
                 if hit and t >= t0 and t <= t1:
                     hits[n] = idx
                     n += 1
@@ -287,12 +357,14 @@ def _n_items(bvh):
 
 
 @jit
-def closest_hits(bvh, origin, direction, t0, t1, r0, r1, out_tri, out_t):
+def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
     """Nearest triangle along rays ``r0 .. r1-1``.
 
     Parameters
     ----------
     bvh : BVH
+    win : Window
+        Window-space coverage for eye rays (:func:`no_window`: none).
     origin, direction : ndarray, shape (R, 3), float64
         Ray ``origin + t * direction``.
     t0, t1 : float
@@ -307,7 +379,7 @@ def closest_hits(bvh, origin, direction, t0, t1, r0, r1, out_tri, out_t):
     stack = np.empty(STACK_SIZE, dtype=np.int64)
     stack_t = np.empty(STACK_SIZE)
     for r in range(r0, r1):
-        k, t = _closest(bvh, stack, stack_t, origin[r, 0], origin[r, 1], origin[r, 2],
+        k, t = _closest(bvh, win, r, stack, stack_t, origin[r, 0], origin[r, 1], origin[r, 2],
                         direction[r, 0], direction[r, 1], direction[r, 2], t0, t1)
         out_tri[r] = k
         out_t[r] = t
@@ -359,6 +431,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
     hits = np.empty(max(1, bvh.index.shape[0]), dtype=np.int64)
     seen = np.full(_n_items(bvh), -1, dtype=np.int64)
     mark = np.full(max(1, n_objects), -1, dtype=np.int64)
+    win = Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
+                 np.zeros(0, np.bool_))
     nl = lights.shape[0]
     for r in range(r0, r1):
         if not active[r]:
@@ -378,7 +452,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
             s0 = offset / np.sqrt(dx * dx + dy * dy + dz * dz)
             n = 0
             if s0 < 0.5:
-                n = _all_hits(bvh, stack, hits, seen, r * nl + li, px, py, pz, dx, dy, dz,
+                n = _all_hits(bvh, win, r, stack, hits, seen, r * nl + li, px, py, pz,
+                              dx, dy, dz,
                               s0, 1.0 - s0, exclude[r], not counts)
             out_blocked[r, li] = n > 0
             if counts:
@@ -397,7 +472,7 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
 
 
 @jit
-def count_crossings(bvh, face_light, face_weight, origin, direction, t_end, r0, r1,
+def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end, r0, r1,
                     out_count):
     """Signed count of shadow-volume faces crossed by each ray, per light.
 
@@ -405,6 +480,8 @@ def count_crossings(bvh, face_light, face_weight, origin, direction, t_end, r0, 
     ----------
     bvh : BVH
         Faces of every light, numbered by the caller's face index.
+    win : Window
+        Window-space coverage for eye rays (:func:`no_window`: none).
     face_light : ndarray, shape (F,), int64
         The light each face belongs to.
     face_weight : ndarray, shape (F,), int64
@@ -422,7 +499,8 @@ def count_crossings(bvh, face_light, face_weight, origin, direction, t_end, r0, 
     for r in range(r0, r1):
         for li in range(nl):
             out_count[r, li] = 0
-        n = _all_hits(bvh, stack, hits, seen, r, origin[r, 0], origin[r, 1], origin[r, 2],
+        n = _all_hits(bvh, win, r, stack, hits, seen, r, origin[r, 0], origin[r, 1],
+                      origin[r, 2],
                       direction[r, 0], direction[r, 1], direction[r, 2], 0.0, t_end[r],
                       -1, False)
         for q in range(n):

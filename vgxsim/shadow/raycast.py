@@ -65,6 +65,11 @@ moved, in its own depth plane, to where the rasterizer snaps it
 (:func:`vgxsim.kernels.clip.snap_window`, docs/numeric_model.md section 2), so the
 reference sees the same triangles as the rasterizer; ``lit``, ``occluders`` and
 ``layers`` then describe the snapped scene and ``crossings`` the snapped faces.
+Eye rays test the triangles whose three vertices were snapped in window space with
+the rasterizer's exact integer edge functions and tie rule (numeric_model section
+3), and take t from the triangle's plane: a pixel centre exactly on a snapped edge
+is decided as the rasterizer decides it, not by rounding.  What remains different
+from a stencil is depth: the rasterizer compares 24-bit z, this compares float64 t.
 """
 
 from __future__ import annotations
@@ -77,7 +82,13 @@ import numpy as np
 from vgxsim import threads as _threads
 from vgxsim.kernels.bvh import BVH, build_bvh
 from vgxsim.kernels.clip import COORD_LIMIT, ONE, snap_window
-from vgxsim.kernels.raycast import closest_hits, count_crossings, shadow_segments
+from vgxsim.kernels.raycast import (
+    Window,
+    closest_hits,
+    count_crossings,
+    no_window,
+    shadow_segments,
+)
 
 from .scene import Scene, shadow_faces
 
@@ -312,28 +323,38 @@ def snap_to_window(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
     -------
     ndarray, shape (T, 3, 4), float64
     """
+    return _snap(tris4, mvp, width, height, subpixel)[0]
+
+
+def _snap(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int, subpixel: bool
+          ) -> tuple[np.ndarray, Window]:
+    """:func:`snap_to_window`, and the :data:`Window` of the snapped fixed-point
+    vertices for the triangles whose three vertices were all snapped."""
     v = tris4.reshape(-1, 4)
     clip = v @ mvp
     x, y, z, w = clip[:, 0], clip[:, 1], clip[:, 2], clip[:, 3]
     fin = v[:, 3] == 1.0
+    hx, hy = width / 2.0, height / 2.0
     with np.errstate(divide="ignore", invalid="ignore"):
-        hx, hy = width / 2.0, height / 2.0
         xw = -0.5 + (x / w + 1.0) * hx
         yw = -0.5 + (y / w + 1.0) * hy
         ok = (fin & (w > 0.0) & (z >= -w) & (z <= w) & (np.abs(xw) < COORD_LIMIT)
               & (np.abs(yw) < COORD_LIMIT))
-    if not np.any(ok):
-        return tris4.copy()
-    xf, yf = snap_window(np.ascontiguousarray(xw[ok]), np.ascontiguousarray(yw[ok]),
-                         bool(subpixel))
-    xs = xf / ONE
-    ys = yf / ONE
-    wk = w[ok]
-    snapped = np.stack([((xs + 0.5) / hx - 1.0) * wk, ((ys + 0.5) / hy - 1.0) * wk,
-                        z[ok], wk], axis=1) @ np.linalg.inv(mvp)
+    fx = np.zeros(len(v), np.int64)
+    fy = np.zeros(len(v), np.int64)
     out = v.copy()
-    out[ok, :3] = snapped[:, :3] / snapped[:, 3:4]
-    return out.reshape(tris4.shape)
+    if np.any(ok):
+        xf, yf = snap_window(np.ascontiguousarray(xw[ok]), np.ascontiguousarray(yw[ok]),
+                             bool(subpixel))
+        fx[ok], fy[ok] = xf, yf
+        wk = w[ok]
+        snapped = np.stack([((xf / ONE + 0.5) / hx - 1.0) * wk,
+                            ((yf / ONE + 0.5) / hy - 1.0) * wk, z[ok], wk], axis=1)
+        snapped = snapped @ np.linalg.inv(mvp)
+        out[ok, :3] = snapped[:, :3] / snapped[:, 3:4]
+    t = len(tris4)
+    win = Window(int(width), fx.reshape(t, 3), fy.reshape(t, 3), ok.reshape(t, 3).all(axis=1))
+    return out.reshape(tris4.shape), win
 
 
 def _bands(n: int, nthreads: int) -> list[tuple[int, int]]:
@@ -409,7 +430,7 @@ def nearest_hit(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray,
     idx = np.empty(len(o), np.int64)
     t = np.empty(len(o))
     n = _threads.get_threads() if threads is None else int(threads)
-    run_bands(closest_hits, len(o), n, bvh, o, d, 0.0, float(tmax), (idx, t))
+    run_bands(closest_hits, len(o), n, bvh, no_window(), o, d, 0.0, float(tmax), (idx, t))
     return idx, t
 
 
@@ -500,16 +521,17 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     face_light = np.concatenate([np.full(len(ft), li, np.int64)
                                  for li, ft in enumerate(ftris)] or [np.zeros(0, np.int64)])
     face_weight = np.concatenate(fweights or [np.zeros(0, np.int64)])
+    scene_win = face_win = no_window()
     if subpixel is not None:
-        tris4 = snap_to_window(tris4, mvp, width, height, subpixel)
-        if len(face4):
-            face4 = snap_to_window(face4, mvp, width, height, subpixel)
+        tris4, scene_win = _snap(tris4, mvp, width, height, subpixel)
+        face4, face_win = _snap(face4, mvp, width, height, subpixel)
 
     # 1. visible surface
     scene_tree = scene_bvh(tris4, sah=sah)
     tri_idx = np.empty(n, np.int64)
     thit = np.empty(n)
-    run_bands(closest_hits, n, nthreads, scene_tree, o, d, 0.0, 1.0, (tri_idx, thit))
+    run_bands(closest_hits, n, nthreads, scene_tree, scene_win, o, d, 0.0, 1.0,
+              (tri_idx, thit))
     hit = tri_idx >= 0
     point = o + np.where(hit, thit, np.nan)[:, None] * d
 
@@ -546,7 +568,8 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     face_tree = scene_bvh(face4, sah=sah, split_within=box if split_faces else None)
     cross = np.zeros((n, nl), np.int64)
     t_end = np.where(hit, thit, 1.0)
-    run_bands(count_crossings, n, nthreads, face_tree, face_light, face_weight, o, d, t_end,
+    run_bands(count_crossings, n, nthreads, face_tree, face_win, face_light, face_weight, o,
+              d, t_end,
          (cross,))
 
     obj = np.where(hit, tri_obj[np.maximum(tri_idx, 0)], -1) if len(tri_obj) else tri_idx
