@@ -122,10 +122,10 @@ def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
 
 
 #: Eye rays through pixel centres tested in window space, as the rasterizer does
-#: (docs/numeric_model.md section 3), for triangles whose three vertices it snaps
-#: without clipping.  ``width``: the image width (ray r is pixel ``(r % width,
-#: r // width)``), 0 for none; ``fx, fy``: (T, 3) int64 fixed-point window
-#: coordinates (1/256 px) by caller index; ``exact``: (T,) bool, which triangles.
+#: (docs/numeric_model.md section 3), for the triangles it draws (clipped, snapped).
+#: ``width``: the image width (ray r is pixel ``(r % width, r // width)``), 0 for
+#: none; ``fx, fy``: (T, 3) int64 fixed-point window coordinates (1/256 px) by caller
+#: index; ``exact``: (T,) bool, which triangles are tested so (others in 3-D).
 Window = namedtuple("Window", ["width", "fx", "fy", "exact"])
 
 

@@ -561,10 +561,12 @@ def test_snapped_vertices_land_on_the_rasterizer_grid(subpixel):
 
 def test_snapping_brings_the_reference_closer_to_the_subpixel_false_stencil():
     # subpixel(FALSE), the article's default, moves vertices by up to half a pixel;
-    # the reference cast on the snapped vertices sees those triangles, so fewer
-    # stencil counts disagree with it than with the exact cast (measured at
-    # 160 x 128: 54 -> 22 and 38 -> 10 pixels; the rest are 24-bit depth ties and
-    # pixel centres exactly on snapped edges, decided by rounding here)
+    # the snapped cast sees the triangles the rasterizer draws (clipped, snapped,
+    # covered by its tie rule), so far fewer stencil counts disagree with it than
+    # with the exact cast (measured at 160 x 128: red 54 -> 3, blue 38 -> 4 pixels;
+    # the rest lie on the floating cube next to its own silhouette edges, where the
+    # shadow face and the cube's face meet at equal depth: 24-bit z ties, which the
+    # float64 reference does not model)
     from vgxsim.examples import heidmann1991 as h91
     from vgxsim.gl._core import current, session
 
@@ -587,4 +589,4 @@ def test_snapping_brings_the_reference_closer_to_the_subpixel_false_stencil():
     for li in (0, 1):
         off_exact = int((planes[li] != exact.crossings[..., li]).sum())
         off_snapped = int((planes[li] != snapped.crossings[..., li]).sum())
-        assert off_snapped < off_exact, (li, off_snapped, off_exact)
+        assert 5 * off_snapped < off_exact, (li, off_snapped, off_exact)
