@@ -84,3 +84,15 @@ def test_hardware_calls_are_accepted_and_recorded(cwin):
         gl.setbell(3)
     with pytest.raises(GLValueError):
         gl.swapinterval(0)
+
+
+def test_mapcolors_getmcolors_rgbsize_monobuffer(cwin):
+    gl.mapcolors(10, 12, [1, 2, 3], [4, 5, 6], [7, 8, 9])
+    assert [gl.getmcolor(i) for i in (10, 11, 12)] == [(1, 4, 7), (2, 5, 8), (3, 6, 9)]
+    assert gl.getmcolors(11, 12) == ([2, 3], [5, 6], [8, 9])
+    with pytest.raises(GLTypeError, match="3 values each"):
+        gl.mapcolors(10, 12, [1, 2], [4, 5, 6], [7, 8, 9])
+    gl.RGBsize(8)
+    with pytest.raises(GLValueError, match="8 bits"):
+        gl.RGBsize(12)
+    gl.monobuffer()

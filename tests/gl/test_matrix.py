@@ -366,3 +366,20 @@ def test_gl_invertmat_and_gl_sincos():
         gl.gl_invertmat([0] * 16)
     s, c = gl.gl_sincos(300)  # 30 degrees
     assert (s, c) == pytest.approx((0.5, math.sqrt(3) / 2))
+
+
+def test_screenspace_maps_screen_pixels_to_the_window(fresh_session):
+    gl.prefposition(100, 115, 50, 61)  # a 16 x 12 window at screen (100, 50)
+    gl.winopen("screen")
+    gl.RGBmode()
+    gl.gconfig()
+    gl.cpack(0xFF000000)
+    gl.clear()
+    gl.screenspace()
+    gl.cpack(0xFF0000FF)
+    gl.bgnpoint()
+    gl.v2i(103, 54)  # screen coordinates
+    gl.endpoint()
+    img = np.frombuffer(gl.lrectread(0, 0, 15, 11), dtype=np.uint32).reshape(12, 16)
+    assert [tuple(map(int, p)) for p in np.argwhere(img & 0xFF)] == [(4, 3)]
+    assert gl.getscrmask() == (0, 15, 0, 11)

@@ -17,6 +17,10 @@ meaning they can have headless, so such programs run unchanged.
   value, as getbutton/getvaluator), as a tuple; ``setvaluator(v, init, vmin, vmax)``
   sets valuator ``v`` to ``init`` as if it had moved there (its range is accepted;
   headless valuators move only where the script moves them).
+* The AIX colour-map extensions ``mapcolors(start, end, r, g, b)`` and
+  ``getmcolors(start, end) -> (r, g, b)`` (lists), done entry by entry with
+  mapcolor/getmcolor.  ``RGBsize(8)``: the VGX's only RGB depth (8 bits per
+  component, GD_BITS_NORM_SNG_RED); ``monobuffer()``: the only buffering (no stereo).
 * Display and keyboard hardware with nothing to show headless: ``swapinterval``
   (every swapbuffers is one frame), ``gsync`` (no vertical retrace to wait for),
   ``ringbell``/``setbell``, ``clkon``/``clkoff`` (keyclick), ``lampon``/``lampoff``
@@ -47,7 +51,8 @@ __all__ = [
     "setshade", "getshade", "spclos", "smoothline", "sbox", "sboxi", "sboxs", "sboxf",
     "sboxfi", "sboxfs", "splf", "splfi", "splfs", "splf2", "splf2i", "splf2s", "getdepth",
     "nmode", "getdev", "setvaluator", "swapinterval", "gsync", "ringbell", "setbell",
-    "clkon", "clkoff", "lampon", "lampoff",
+    "clkon", "clkoff", "lampon", "lampoff", "mapcolors", "getmcolors", "RGBsize",
+    "monobuffer",
 ]
 
 
@@ -248,3 +253,53 @@ def lampon(*args) -> None:
 def lampoff(*args) -> None:
     """lampoff(lamps): turn keyboard lamps off (accepted)."""
     compat_state().lamps &= ~_lamps("lampoff", args)
+
+
+# -- colour-map extensions and the one RGB configuration ----------------------------------------
+@gl_function(record=False)
+def mapcolors(*args) -> None:
+    """mapcolors(start, end, r, g, b): mapcolor(i, r[k], g[k], b[k]) for i = start..end
+    (the AIX GL extension; the lists hold end - start + 1 values)."""
+    name = "mapcolors"
+    if len(args) != 5:
+        raise GLTypeError(f"{describe(name, args)}: expected (start, end, r, g, b)")
+    lo = as_int(name, args, "start", args[0])
+    hi = as_int(name, args, "end", args[1])
+    comps = [flat_numbers(name, (a,), None, integer=True) for a in args[2:]]
+    n = hi - lo + 1
+    if n < 1 or any(len(c) != n for c in comps):
+        raise GLTypeError(f"{describe(name, args)}: r, g and b need end - start + 1 = "
+                          f"{max(n, 0)} values each")
+    for k in range(n):
+        _color.mapcolor(lo + k, comps[0][k], comps[1][k], comps[2][k])
+
+
+@gl_function(record=False)
+def getmcolors(*args) -> tuple[list[int], list[int], list[int]]:
+    """getmcolors(start, end) -> (r, g, b): the map entries start..end as three lists."""
+    name = "getmcolors"
+    if len(args) != 2:
+        raise GLTypeError(f"{describe(name, args)}: expected (start, end)")
+    lo = as_int(name, args, "start", args[0])
+    hi = as_int(name, args, "end", args[1])
+    if hi < lo:
+        raise GLValueError(f"{describe(name, args)}: end must not be below start")
+    entries = [_color.getmcolor(i) for i in range(lo, hi + 1)]
+    return tuple([e[c] for e in entries] for c in range(3))
+
+
+@gl_function(record=False)
+def RGBsize(planes: int) -> None:  # noqa: N802 - the IRIS GL name
+    """RGBsize(planes): bits per RGB component; the VGX has 8 (others are an error)."""
+    args = (planes,)
+    n = as_int("RGBsize", args, "planes", planes)
+    if n != 8:
+        raise GLValueError(f"{describe('RGBsize', args)}: the VGX has 8 bits per component "
+                           f"(getgdesc(GD_BITS_NORM_SNG_RED))")
+    current("RGBsize", args)
+
+
+@gl_function(record=False)
+def monobuffer(*args) -> None:
+    """monobuffer(): mono (not stereo) buffering, the only mode vgxsim has."""
+    current("monobuffer", args)

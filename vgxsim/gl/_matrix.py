@@ -40,7 +40,7 @@ __all__ = [
     "mmode", "getmmode", "perspective", "window", "ortho", "ortho2", "lookat",
     "polarview", "rotate", "rot", "translate", "scale", "pushmatrix", "popmatrix",
     "loadmatrix", "multmatrix", "getmatrix", "pushviewport", "popviewport", "mapw", "mapw2",
-    "gl_invertmat", "gl_sincos",
+    "gl_invertmat", "gl_sincos", "screenspace",
 ]
 
 VPSTACKDEPTH = int(GL.VPSTACKDEPTH)
@@ -438,3 +438,19 @@ def gl_sincos(angle: int) -> tuple[float, float]:
     """gl_sincos(a) -> (sin, cos) of the Angle ``a`` in tenths of a degree (libgl)."""
     a = as_angle("gl_sincos", (angle,), angle) * np.pi / 1800.0
     return float(np.sin(a)), float(np.cos(a))
+
+
+@gl_function(record=True)
+def screenspace(*args) -> None:
+    """screenspace(): draw in absolute screen coordinates (screenspace(3G)): the
+    viewport covers the whole 1280x1024 screen placed at the window's origin, with
+    ``ortho2(-0.5, XMAXSCREEN + 0.5, -0.5, YMAXSCREEN + 0.5)`` loaded, so screen pixel
+    (x, y) is window pixel (x - xorigin, y - yorigin).  The screen mask stays the
+    window (nothing outside it can be drawn)."""
+    from ._window import scrmask, viewport
+
+    ctx = current("screenspace", args)
+    ox, oy = getattr(ctx, "origin", (0, 0))
+    viewport(-ox, int(GL.XMAXSCREEN) - ox, -oy, int(GL.YMAXSCREEN) - oy)
+    scrmask(0, ctx.width - 1, 0, ctx.height - 1)
+    ortho2(-0.5, int(GL.XMAXSCREEN) + 0.5, -0.5, int(GL.YMAXSCREEN) + 0.5)
