@@ -96,3 +96,29 @@ def test_mapcolors_getmcolors_rgbsize_monobuffer(cwin):
     with pytest.raises(GLValueError, match="8 bits"):
         gl.RGBsize(12)
     gl.monobuffer()
+
+
+def test_pushattributes_popattributes(cwin):
+    gl.color(3)
+    gl.linewidth(2)
+    gl.deflinestyle(5, 0xF0F0)
+    gl.setlinestyle(5)
+    gl.writemask(0x0F)
+    gl.shademodel(GL.FLAT)
+    gl.pushattributes()
+    gl.color(6)
+    gl.linewidth(4)
+    gl.setlinestyle(0)
+    gl.writemask(0xFF)
+    gl.shademodel(GL.GOURAUD)
+    gl.popattributes()
+    assert (gl.getcolor(), gl.getlwidth(), gl.getlstyle(), gl.getwritemask(), gl.getsm()) == (
+        3, 2, 5, 0x0F, GL.FLAT)
+    gl.popattributes()  # empty: ignored
+    for _ in range(GL.ATTRIBSTACKDEPTH):
+        gl.pushattributes()  # the stack is full of colour 3
+    gl.color(6)
+    gl.pushattributes()  # ignored: colour 6 is not saved
+    gl.color(7)
+    gl.popattributes()
+    assert gl.getcolor() == 3

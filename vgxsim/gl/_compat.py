@@ -21,6 +21,12 @@ meaning they can have headless, so such programs run unchanged.
   ``getmcolors(start, end) -> (r, g, b)`` (lists), done entry by entry with
   mapcolor/getmcolor.  ``RGBsize(8)``: the VGX's only RGB depth (8 bits per
   component, GD_BITS_NORM_SNG_RED); ``monobuffer()``: the only buffering (no stereo).
+* ``pushattributes``/``popattributes``: the attribute stack (ATTRIBSTACKDEPTH 10
+  levels; a push on a full stack and a pop on an empty one are ignored, as
+  pushattributes(3G) says of the push).  Saved, per IRIX 6.5 pushattributes(3G):
+  backbuffer, frontbuffer, colour (index and RGB), font, linestyle, lsrepeat,
+  linewidth, writemask and RGB writemask, shademodel.  Not saved: cmode/RGBmode (a
+  request that only gconfig acts on), drawmode and pattern (not emulated here).
 * Display and keyboard hardware with nothing to show headless: ``swapinterval``
   (every swapbuffers is one frame), ``gsync`` (no vertical retrace to wait for),
   ``ringbell``/``setbell``, ``clkon``/``clkoff`` (keyclick), ``lampon``/``lampoff``
@@ -52,8 +58,12 @@ __all__ = [
     "sboxfi", "sboxfs", "splf", "splfi", "splfs", "splf2", "splf2i", "splf2s", "getdepth",
     "nmode", "getdev", "setvaluator", "swapinterval", "gsync", "ringbell", "setbell",
     "clkon", "clkoff", "lampon", "lampoff", "mapcolors", "getmcolors", "RGBsize",
-    "monobuffer",
+    "monobuffer", "pushattributes", "popattributes",
 ]
+
+ATTRIBSTACKDEPTH = int(GL.ATTRIBSTACKDEPTH)
+_RASTER_ATTRIBUTES = ("frontbuffer", "backbuffer", "linestyle", "lsrepeat", "linewidth",
+                      "wmpack", "shademodel")
 
 
 @dataclass
@@ -303,3 +313,36 @@ def RGBsize(planes: int) -> None:  # noqa: N802 - the IRIS GL name
 def monobuffer(*args) -> None:
     """monobuffer(): mono (not stereo) buffering, the only mode vgxsim has."""
     current("monobuffer", args)
+
+
+# -- the attribute stack ---------------------------------------------------------------------
+def _attribute_stack(ctx) -> list:
+    return topic_state("attribute-stacks", dict).setdefault(id(ctx), [])
+
+
+@gl_function(record=True)
+def pushattributes(*args) -> None:
+    """pushattributes(): save the global state attributes (module docstring)."""
+    ctx = current("pushattributes", args)
+    stack = _attribute_stack(ctx)
+    if len(stack) >= ATTRIBSTACKDEPTH:
+        return  # pushattributes(3G): "ignored if the stack is full"
+    stack.append({
+        "colour": ctx.colour, "colour_index": ctx.colour_index, "font": ctx.font,
+        "linestyle_index": ctx.linestyle_index,
+        "raster": {k: getattr(ctx.raster, k) for k in _RASTER_ATTRIBUTES},
+    })
+
+
+@gl_function(record=True)
+def popattributes(*args) -> None:
+    """popattributes(): restore the attributes saved last (ignored on an empty
+    stack)."""
+    ctx = current("popattributes", args)
+    stack = _attribute_stack(ctx)
+    if not stack:
+        return
+    saved = stack.pop()
+    ctx.colour, ctx.colour_index = saved["colour"], saved["colour_index"]
+    ctx.font, ctx.linestyle_index = saved["font"], saved["linestyle_index"]
+    ctx.raster.set(**saved["raster"])
