@@ -183,8 +183,9 @@ def pick(*args) -> None:
     """
     st, ctx = _begin("pick", args, "pick")
     q = event_queue()
-    cx = q.getvaluator(DEVICE.MOUSEX) - ctx.origin[0]
-    cy = q.getvaluator(DEVICE.MOUSEY) - ctx.origin[1]
+    ox, oy = getattr(ctx, "origin", (0, 0))  # winopen sets it; bare Contexts are at 0, 0
+    cx = q.getvaluator(DEVICE.MOUSEX) - ox
+    cy = q.getvaluator(DEVICE.MOUSEY) - oy
     dx, dy = st.picksize
     ctx.matrices.begin_pick(pick_matrix(cx, cy, dx, dy, ctx.raster.viewport))
 
