@@ -142,4 +142,5 @@ def write_image(path: str | PathLike, top_down: np.ndarray, *, overwrite: bool =
         raise SinkError(f"{path} exists; give --overwrite (overwrite=True) to replace it")
     if ext == ".jpg":
         top_down = np.ascontiguousarray(top_down[..., :3])
-    atomic_write(path, lambda fh: iio.imwrite(fh, top_down, extension=ext))
+    # Pillow writes all three (imageio's vendored tifffile is deprecated)
+    atomic_write(path, lambda fh: iio.imwrite(fh, top_down, extension=ext, plugin="pillow"))

@@ -19,6 +19,7 @@ every frame it was sent.
 from __future__ import annotations
 
 import functools
+import signal
 import subprocess
 import tempfile
 
@@ -87,7 +88,9 @@ class FFmpegStream:
         self._log.seek(0)
         text = self._log.read().decode("utf-8", "replace").strip()
         tail = " | ".join(text.splitlines()[-3:]) or "no message"
-        return OSError(f"{what} (ffmpeg exit status {self._proc.returncode}: {tail})")
+        rc = self._proc.returncode
+        how = f"killed by {signal.Signals(-rc).name}" if rc < 0 else f"exit status {rc}"
+        return OSError(f"{what} (ffmpeg {how}: {tail})")
 
     def append(self, rgb: np.ndarray) -> None:
         """Send one ``(H, W, 3)`` uint8 frame, top row first (even sizes)."""
