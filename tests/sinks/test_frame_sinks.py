@@ -293,3 +293,13 @@ def test_write_image_format_from_the_name(tmp_path):
     with pytest.raises(SinkError, match="must end in .png"):
         write_png(tmp_path / "b.jpg", bottom_up_image())
     assert not (tmp_path / "a.bmp").exists() and not (tmp_path / "b.jpg").exists()
+
+
+def test_an_empty_placeholder_is_not_an_earlier_output(tmp_path):
+    import tempfile
+
+    fd, tmp = tempfile.mkstemp(suffix=".gif", dir=tmp_path)  # as an atomic writer makes
+    os.close(fd)
+    with VideoSink(tmp) as sink:  # nothing to lose: no --overwrite needed
+        sink.write(flat(2, 2, (7, 7, 7)))
+    assert iio.imread(tmp, index=None).shape[:3] == (1, 2, 2)
