@@ -254,8 +254,10 @@ class PNGSequenceSink(FrameSink):
                 raise SinkError(f"cannot delete the earlier frame {path}: {exc}") from exc
 
     def earlier_frames(self) -> list[str]:
-        """Frame files in the folder named as this sink (or a window's) names them."""
-        pattern = re.compile(rf"(win\d+_)?{re.escape(self.prefix)}\d+\.png")
+        """Frame files in the folder named as this sink (or a window's) names them,
+        and the temporary files of frames a killed run was writing."""
+        name = rf"(win\d+_)?{re.escape(self.prefix)}\d+\.png"
+        pattern = re.compile(rf"{name}|\.{name}\.\d+\.\d+\.tmp")
         with os.scandir(self.directory) as entries:
             return sorted(e.path for e in entries if pattern.fullmatch(e.name))
 

@@ -66,18 +66,25 @@ def check_writable_folder(folder: str) -> None:
             pass
 
 
+def _holds_data(path: str) -> bool:
+    """Whether replacing ``path`` could lose anything: an empty regular file (a
+    placeholder such as ``tempfile.mkstemp`` makes) holds nothing."""
+    return not (os.path.isfile(path) and os.path.getsize(path) == 0)
+
+
 def check_writable_file(path: str, overwrite: bool) -> None:
     """Prove ``path`` can be written: its folder exists, it is not a folder, it does
-    not exist unless ``overwrite``, and a byte written to it reaches the file system
-    (``/dev/full`` fails here).  Leaves no file behind (an existing one is emptied,
-    which ``overwrite`` allows)."""
+    not exist unless ``overwrite`` (an empty file counts as absent: nothing can be
+    lost), and a byte written to it reaches the file system (``/dev/full`` fails
+    here).  Leaves no new file behind; an existing one is left empty, which
+    ``overwrite`` (or its being empty already) allows."""
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise SinkError(f"cannot write {path}: its folder {folder} does not exist")
     if os.path.isdir(path):
         raise SinkError(f"cannot write {path}: it is a folder")
     existed = os.path.lexists(path)
-    if existed and not overwrite:
+    if existed and not overwrite and _holds_data(path):
         raise SinkError(f"{path} exists; give --overwrite (overwrite=True) to replace it")
     regular = not existed or os.path.isfile(path)
     try:
@@ -89,11 +96,13 @@ def check_writable_file(path: str, overwrite: bool) -> None:
     except OSError as exc:
         raise SinkError(f"cannot write {path}: {_reason(exc)}") from exc
     finally:
-        if regular and not os.path.islink(path):
-            try:
+        try:
+            if regular and not existed:
                 os.unlink(path)
-            except OSError:
-                pass
+            elif regular:
+                os.truncate(path, 0)  # the probe byte goes; the (emptied) file stays
+        except OSError:
+            pass
 
 
 def atomic_write(path: str, write) -> None:
@@ -138,8 +147,9 @@ def write_image(path: str | PathLike, top_down: np.ndarray, *, overwrite: bool =
 
     path = os.fspath(path)
     ext = image_format(path)
-    if not overwrite and os.path.lexists(path):
+    if not overwrite and os.path.lexists(path) and _holds_data(path):
         raise SinkError(f"{path} exists; give --overwrite (overwrite=True) to replace it")
     if ext == ".jpg":
         top_down = np.ascontiguousarray(top_down[..., :3])
-    atomic_write(path, lambda fh: iio.imwrite(fh, top_down, extension=ext))
+    # Pillow writes all three (imageio's vendored tifffile is deprecated)
+    atomic_write(path, lambda fh: iio.imwrite(fh, top_down, extension=ext, plugin="pillow"))
