@@ -188,13 +188,17 @@ def orbit(camera: Camera, rotate: tuple[float, float] = (0.0, 0.0),
     az = math.atan2(d[0], d[2]) - math.radians(rotate[0])
     el = math.asin(max(-1.0, min(1.0, d[1] / r))) + math.radians(rotate[1])
     el = max(-math.radians(89.0), min(math.radians(89.0), el))
-    r = max(r - dolly, 1e-3 * r)
-    d = r * np.array([math.cos(el) * math.sin(az), math.sin(el), math.cos(el) * math.cos(az)])
+    if rotate[0] or rotate[1] or dolly:  # (untouched otherwise: no rounding of the eye)
+        r = max(r - dolly, 1e-3 * r)
+        d = r * np.array([math.cos(el) * math.sin(az), math.sin(el),
+                          math.cos(el) * math.cos(az)])
     forward = -d / r
     right = np.cross(forward, [0.0, 1.0, 0.0])
     right /= np.linalg.norm(right)
     up = np.cross(right, forward)
     shift = translate[0] * right + translate[1] * up
+    if not (translate[0] or translate[1] or rotate[0] or rotate[1] or dolly):
+        return camera
     tgt = tgt + shift
     return replace(camera, eye=tuple((tgt + d).tolist()), target=tuple(tgt.tolist()))
 
