@@ -179,15 +179,23 @@ def test_mask_mode_colours_follow_the_crossing_counts(ref, light):
 def faces_cover(scene, light: int, ref) -> np.ndarray:
     """(H, W) bool, image order: some shadow face lies between the eye and the visible
     surface (a float64 ray-segment test, independent of the stencil)."""
-    from vgxsim.shadow.raycast import pixel_rays
-
-    origin, direction = pixel_rays(scene, W, H)
-    origin = origin.reshape(H, W, 3)[::-1].reshape(-1, 3)
-    direction = direction.reshape(H, W, 3)[::-1].reshape(-1, 3)
+    # rays through pixel centres (IRIS: integer window coordinates are pixel centres),
+    # from the near plane to the far plane, image order
+    mvp = scene.camera.modelview() @ scene.camera.projection(W / H)
+    inv = np.linalg.inv(mvp)
+    ys, xs = np.mgrid[H - 1:-1:-1, 0:W]
+    ndc = np.stack([(2 * xs + 1) / W - 1, (2 * ys + 1) / H - 1], axis=-1).reshape(-1, 2)
+    ends = []
+    for z in (-1.0, 1.0):
+        h4 = np.concatenate([ndc, np.full((len(ndc), 1), z), np.ones((len(ndc), 1))], 1) @ inv
+        ends.append(h4[:, :3] / h4[:, 3:4])
+    origin, direction = ends[0], ends[1] - ends[0]
     quads, _ = shadow_faces(scene, light)
     tris = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
-    r = raycast(scene, W, H)
-    t_hit = np.where(np.isfinite(r.t), r.t, 1.0)[::-1].reshape(-1)
+    point = raycast(scene, W, H).point[::-1].reshape(-1, 3)  # the visible surface
+    t_hit = np.where(np.isfinite(point[:, 0]),
+                     np.einsum("ij,ij->i", np.nan_to_num(point) - origin, direction)
+                     / np.einsum("ij,ij->i", direction, direction), 1.0)
     e1, e2 = tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
     out = np.zeros(len(origin), bool)
     for k in range(0, len(origin), 2048):
