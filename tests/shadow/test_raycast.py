@@ -23,6 +23,7 @@ from vgxsim.shadow.raycast import (
     nearest_hit,
     pixel_rays,
     raycast,
+    shade,
     snap_to_window,
     usable_triangles,
 )
@@ -590,3 +591,24 @@ def test_snapping_brings_the_reference_closer_to_the_subpixel_false_stencil():
         off_exact = int((planes[li] != exact.crossings[..., li]).sum())
         off_snapped = int((planes[li] != snapped.crossings[..., li]).sum())
         assert 5 * off_snapped < off_exact, (li, off_snapped, off_exact)
+
+
+def test_shade_lights_only_what_the_cast_says_is_lit(scene, result):
+    img = shade(scene, result)
+    assert img.shape == (H, W, 4) and img.dtype == np.uint8
+    assert np.all(img[~result.hit][:, :3] == 0) and np.all(img[..., 3] == 255)
+    # against the same cast with every light unblocked: identical where both lights
+    # reach, darker on the floor (which faces both lights) where one is blocked
+    bright = shade(scene, dataclasses.replace(result, lit=result.hit[..., None]
+                                              & np.ones_like(result.lit)))
+    both = result.lit.all(axis=2)
+    assert np.array_equal(img[both], bright[both])
+    shadowed = (result.object_id == 0) & ~both
+    assert shadowed.sum() > 50
+    assert np.all(img[shadowed][:, :3].astype(int).sum(1)
+                  < bright[shadowed][:, :3].astype(int).sum(1))
+    # a directional light shades too
+    sun = dataclasses.replace(scene, lights=(DirectionalLight("sun", (0.0, 1.0, 0.0, 0.0)),))
+    r = raycast(sun, W, H, faces=[(np.zeros((0, 3, 3)), np.zeros(0, np.int64))])
+    top = shade(sun, r)
+    assert top[r.hit & r.lit[..., 0]][:, :3].astype(int).sum(1).min() > 0

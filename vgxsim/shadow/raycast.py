@@ -671,7 +671,8 @@ def shade(scene: Scene, result: RayCastResult) -> np.ndarray:
     for li, light in enumerate(scene.lights):
         lc = np.asarray(light.colour)
         col += am * np.asarray(light.ambient)
-        ldir = np.asarray(light.position) - p
+        lp = light_position(light)
+        ldir = lp[:3] - p if lp[3] else np.broadcast_to(lp[:3], p.shape).copy()
         ldir /= np.linalg.norm(ldir, axis=1, keepdims=True)
         ndl = np.maximum(np.einsum("ij,ij->i", nrm, ldir), 0.0)
         hv = ldir + view_dir
