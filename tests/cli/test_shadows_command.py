@@ -27,8 +27,23 @@ def test_no_arguments_writes_a_non_blank_png(tmp_path):
     assert "wrote shadows.png" in proc.stdout
 
 
-def test_help_lists_the_options(tmp_path):
-    out = vgxsim("shadows", "-h", cwd=tmp_path).stdout
+def in_process(*args, cwd, monkeypatch, capsys):
+    """Run the command in this interpreter (no start-up cost): (status, stdout, stderr)."""
+    from vgxsim.cli import main
+
+    monkeypatch.chdir(cwd)
+    monkeypatch.setenv("VGXSIM_CACHE_DIR", str(cwd / "cache"))
+    try:
+        rc = main(list(args))
+    except SystemExit as exc:  # argparse: -h and usage errors
+        rc = exc.code
+    out = capsys.readouterr()
+    return rc, out.out, out.err
+
+
+def test_help_lists_the_options(tmp_path, monkeypatch, capsys):
+    _, out, _ = in_process("shadows", "-h", cwd=tmp_path, monkeypatch=monkeypatch,
+                           capsys=capsys)
     for opt in ("--size", "--mode", "--light", "--soft", "--soft-max", "--rotate",
                 "--translate", "--dolly", "--spin", "--subpixel", "-o"):
         assert opt in out
@@ -61,15 +76,19 @@ def test_bad_scene_exits_non_zero_names_file_and_line_and_writes_nothing(tmp_pat
     (["--subpixel", "maybe"], "on or off"),
     (["nosuchscene.scn"], "no such scene file"),
 ])
-def test_usage_errors(tmp_path, args, words):
-    proc = vgxsim("shadows", *args, cwd=tmp_path)
-    assert proc.returncode != 0 and words in proc.stderr
+def test_usage_errors(tmp_path, monkeypatch, capsys, args, words):
+    rc, _, err = in_process("shadows", *args, cwd=tmp_path, monkeypatch=monkeypatch,
+                            capsys=capsys)
+    assert rc != 0 and words in err
+    assert not any(p.suffix in (".png", ".gif") for p in tmp_path.iterdir())
 
 
-def test_convert(tmp_path):
+def test_convert(tmp_path, monkeypatch, capsys):
     trimesh.creation.icosphere(subdivisions=1).export(tmp_path / "ball.off")
-    proc = vgxsim("convert", "ball.off", "ball.glo", "-f", cwd=tmp_path)
-    assert proc.returncode == 0, proc.stderr
+    kw = dict(cwd=tmp_path, monkeypatch=monkeypatch, capsys=capsys)
+    rc, out, err = in_process("convert", "ball.off", "ball.glo", "-f", **kw)
+    assert rc == 0, err
+    assert "reversed" in out
     assert (tmp_path / "ball.glo").read_text().startswith("glo 1\n")
-    proc = vgxsim("convert", "missing.obj", "x.glo", cwd=tmp_path)
-    assert proc.returncode == 1 and "no such mesh file" in proc.stderr
+    rc, _, err = in_process("convert", "missing.obj", "x.glo", **kw)
+    assert rc == 1 and "no such mesh file" in err

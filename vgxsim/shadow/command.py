@@ -87,7 +87,8 @@ def add_parsers(sub, size_type, positive_int) -> None:
                          "intermediate results are written after 1, 2, 4, 8, ... frames")
     sh.add_argument("--seed", type=int, default=1991, help="jitter random seed (default 1991)")
     sh.add_argument("--rotate", type=_pair, default=(0.0, 0.0), metavar="AZ,EL",
-                    help="turn the view: degrees of azimuth and elevation (trackball)")
+                    help="turn the view: degrees of azimuth and elevation (trackball); "
+                         "negative first: --rotate=-30,10")
     sh.add_argument("--translate", type=_pair, default=(0.0, 0.0), metavar="X,Y",
                     help="shift the view right and up, in scene units")
     sh.add_argument("--dolly", type=float, default=0.0, metavar="D",
@@ -168,30 +169,35 @@ def run_shadows(ns: argparse.Namespace) -> int:
                   "hard", file=sys.stderr)
     kw = dict(mode=ns.mode, size=ns.size, light=ns.light, seed=ns.seed, edges=ns.edges,
               subpixel=ns.subpixel, signs=ns.signs)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", api.ViewpointInShadowWarning)
-        if ns.spin:
-            frames = api.render_spin(scene, ns.spin, soft=soft, **kw)
-            api.write_animation(out, frames, ns.fps)
-            what = f"{ns.spin} frames"
-        else:
-            bar = _progress(soft) if soft else None
-            checkpoints = {1 << k for k in range(16)}
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", api.ViewpointInShadowWarning)
+            if ns.spin:
+                frames = api.render_spin(scene, ns.spin, soft=soft, **kw)
+                api.write_animation(out, frames, ns.fps)
+                what = f"{ns.spin} frames"
+            else:
+                bar = _progress(soft) if soft else None
+                checkpoints = {1 << k for k in range(16)}
 
-            def intermediate(n: int, colour) -> None:
-                if bar is not None:
-                    bar.update(1)
-                if n in checkpoints and n < soft:  # README: "intermediate results"
-                    api.write_image(out, colour)
+                def intermediate(n: int, colour) -> None:
+                    if bar is not None:
+                        bar.update(1)
+                    if n in checkpoints and n < soft:  # README: "intermediate results"
+                        api.write_image(out, colour)
 
-            try:
-                frame = api.render(scene, soft=soft,
-                                   on_soft_frame=intermediate if soft else None, **kw)
-            finally:
-                if bar is not None:
-                    bar.close()
-            api.write_image(out, frame.colour)
-            what = f"{soft} soft-shadow frames" if soft else f"mode {ns.mode}"
+                try:
+                    frame = api.render(scene, soft=soft,
+                                       on_soft_frame=intermediate if soft else None, **kw)
+                finally:
+                    if bar is not None:
+                        bar.close()
+                api.write_image(out, frame.colour)
+                what = f"{soft} soft-shadow frames" if soft else f"mode {ns.mode}"
+    except (OSError, ImportError, ValueError) as exc:
+        # e.g. a read-only folder, or .mp4 without imageio-ffmpeg: nothing half-written
+        print(f"{prog}: cannot write {out}: {exc}", file=sys.stderr)
+        return STATUS_BAD_INPUT
     for w in caught:
         if issubclass(w.category, api.ViewpointInShadowWarning):
             print(f"{prog}: warning: {w.message}", file=sys.stderr)
