@@ -18,6 +18,7 @@ from vgxsim.state.codes import (
     CBLEND_ADD,
     CBLEND_GENERAL,
     CBLEND_REPLACE,
+    CBLEND_SA_MSA,
     CLEAR_COLOUR,
     CLEAR_STENCIL,
     CLEAR_Z,
@@ -60,6 +61,7 @@ from vgxsim.state.codes import (
 
 from .fragment import (
     add_sat,
+    blend_sa_msa,
     cmp_bits,
     cmp_select,
     colour_row,
@@ -262,15 +264,19 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
     srow = sten[y]
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
     if ztest and blend != CBLEND_GENERAL:
-        # Branch-free form for the common passes (z test on, replace or add blend;
-        # Heidmann's ambient and lit passes): every pixel computes everything and the
-        # writes select old or new values, so LLVM can vectorize the loop.
+        # Branch-free form for the common passes (z test on; replace, add or SA+MSA
+        # blend; Heidmann's ambient and lit passes): every pixel computes everything
+        # and the writes select old or new values, so LLVM can vectorize the loop.
         sfunc = st[S_SFUNC]
         smask = st[S_SMASK]
         sref = st[S_SREF] & smask
         slt, seq, sgt = cmp_bits(sfunc)
         add = blend == CBLEND_ADD
-        if dv[D_STENCIL] != 0:
+        if blend == CBLEND_SA_MSA:
+            _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                        lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
+                        wm, keep, buf, zrow, srow)
+        elif dv[D_STENCIL] != 0:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 sv = np.int64(srow[ux]) & smask
@@ -299,6 +305,36 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
         return
     _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                       front, back, zbuf, sten)
+
+
+@jit
+def _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, keep, buf, zrow, srow):
+    """MODE_COLOUR with blendfunction(BF_SA, BF_MSA) and the z test on: the
+    branch-free span loop of :func:`_colour_span` with the alpha blend computed
+    component by component (compiled out of line: keeps the band kernel's compile
+    short; one call per row span)."""
+    if stest:
+        for x in range(xl, xr + 1):
+            ux = np.uintp(x)
+            sok = cmp_select(slt, seq, sgt, sref, np.int64(srow[ux]) & smask)
+            zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+            zb = np.int64(zrow[ux])
+            ok = sok & cmp_select(lt, eq, gt, zi, zb)
+            zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+            dst = np.int64(buf[ux])
+            out = blend_sa_msa(x - x0, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst)
+            buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+    else:
+        for x in range(xl, xr + 1):
+            ux = np.uintp(x)
+            zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+            zb = np.int64(zrow[ux])
+            ok = cmp_select(lt, eq, gt, zi, zb)
+            zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+            dst = np.int64(buf[ux])
+            out = blend_sa_msa(x - x0, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst)
+            buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
 
 
 @jit

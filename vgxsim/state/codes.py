@@ -88,8 +88,9 @@ MODE_ZSTENCIL_ADD = 3
 # algorithm (stencil EQUAL, blend ONE+ONE) and ordinary shaded drawing.
 MODE_COLOUR = 4
 
-# MODE_COLOUR blend kinds: replace (ONE, ZERO), add (ONE, ONE), any other factors.
-CBLEND_REPLACE, CBLEND_ADD, CBLEND_GENERAL = 0, 1, 2
+# MODE_COLOUR blend kinds: replace (ONE, ZERO), add (ONE, ONE), alpha blend (SA, MSA),
+# any other factors.
+CBLEND_REPLACE, CBLEND_ADD, CBLEND_SA_MSA, CBLEND_GENERAL = 0, 1, 2, 3
 
 # ------------------------------------------------------------- work counters
 

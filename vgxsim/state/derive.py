@@ -24,6 +24,8 @@ def _cmp(func: int, lhs, rhs):
     return ((func >> code) & 1) != 0
 
 
+_CBLEND = {(C.BF_ONE, C.BF_ZERO): C.CBLEND_REPLACE, (C.BF_ONE, C.BF_ONE): C.CBLEND_ADD,
+           (C.BF_SA, C.BF_MSA): C.CBLEND_SA_MSA}  # blends with a vectorized span loop
 _ADD_OPS = (C.OP_KEEP, C.OP_INCR, C.OP_DECR)  # ops that are "add -1, 0 or +1, clamped"
 
 
@@ -84,8 +86,7 @@ def _derive_one(row: tuple, planes: int, has_colour: bool, has_z: bool):
             and ((not ztest) or (not zwrite) or zmask == C.Z24_MASK)):
         d[C.D_MODE] = C.MODE_COLOUR
         sf, df = st[C.S_BLEND_SF], st[C.S_BLEND_DF]
-        d[C.D_CBLEND] = (C.CBLEND_REPLACE if (sf, df) == (C.BF_ONE, C.BF_ZERO) else
-                        C.CBLEND_ADD if (sf, df) == (C.BF_ONE, C.BF_ONE) else C.CBLEND_GENERAL)
+        d[C.D_CBLEND] = _CBLEND.get((sf, df), C.CBLEND_GENERAL)
     tab = np.empty((3, 256), np.uint8)
     if not sten:
         tab[0] = _S
