@@ -15,9 +15,16 @@ Argument conventions follow CPython's historical ``gl`` binding
 ``v3f((x, y, z))`` both work; the ``s``/``i`` forms take ints only; ``varray``,
 ``vnarray`` and ``nvarray`` take lists of point tuples.
 
-Every call here is also described to the display-object compiler
-(:mod:`._objects`) by a ``stream`` attribute: a function from the call's arguments
-to a list of *stream operations* (validated exactly as the call itself validates):
+Every call appends to the window's command stream (:mod:`vgxsim.stream`): a vertex
+is one opcode and four floats; the current colour, normal and lit flag are sent as
+one SYNC op before a vertex only when they changed since the last vertex (compared
+by identity: the colour and normal calls store new tuples), and the draw state is
+sent as one STATE op at bgn* only when it changed.  The stream is decoded at a flush
+(:mod:`vgxsim.pipeline.decode`).
+
+Every call here is also described to the display-object recorder (:mod:`._objects`)
+by a ``stream`` attribute: a function from the call's arguments to a list of *stream
+operations* (validated exactly as the call itself validates):
 
 * ``('bgn', prim)`` / ``('end', prim)`` -- prim is 'polygon', 'tmesh', 'qstrip',
   'line', 'closedline', 'point' or 'pmv' (the old-style pmv/pdr/pclos polygon);
@@ -29,9 +36,12 @@ to a list of *stream operations* (validated exactly as the call itself validates
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 
 import numpy as np
+
+from vgxsim.pipeline.decode import drain
+from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, V
 
 from ._core import (
     GLTypeError,
@@ -43,6 +53,8 @@ from ._core import (
     describe,
     flat_numbers,
     gl_function,
+    record_or_refuse,
+    session,
 )
 
 __all__ = [
@@ -114,44 +126,85 @@ def _xyzw(vals: tuple[float, ...]) -> tuple[float, float, float, float]:
     return vals  # type: ignore[return-value]
 
 
-# -- applying stream operations to a context ------------------------------------------
+# -- appending to the window's stream -------------------------------------------------
+def _restate(ctx, st) -> None:
+    """Record the window's draw state (a STATE op) if it changed since the last one."""
+    regs = ctx.raster
+    if (regs._snapshot is not None and regs._snapshot is st.raster
+            and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
+            and ctx.lighting_serial == st.lighting_serial and ctx.concave is st.concave):
+        return
+    idx = ctx.states.intern(ctx)
+    st.raster = regs._snapshot
+    st.mvp = ctx.matrices._mvp
+    st.depth = ctx.depth_range
+    st.lighting_serial = ctx.lighting_serial
+    st.concave = ctx.concave
+    st.ops.append(STATE)
+    st.ops.append(idx)
+
+
+def sync(ctx, st) -> None:
+    """Send the current colour, normal and lit flag (a SYNC op)."""
+    c, nrm, ls, lms = ctx.colour, ctx.normal, ctx.last_sent, ctx.lmcolor_set
+    ops = st.ops
+    ops.append(SYNC)
+    ops.append(1 if ls == "normal" else 0)
+    ops.append(1 if lms else 0)
+    st.fl.extend(c)
+    st.fl.extend(nrm)
+    st.colour, st.normal, st.sent, st.lmcolor_set = c, nrm, ls, lms
+
+
 def begin(ctx, name: str, args: tuple, prim: str) -> None:
     """Open a primitive; GLUsageError if one is already open."""
     if ctx.prim is not None:
         raise GLUsageError(f"{describe(name, args)}: {OPENER[ctx.prim]}() is still open "
                            f"(call {CLOSER[ctx.prim]}() first)")
+    st = ctx.stream
+    _restate(ctx, st)
     ctx.prim = prim
-    ctx.prim_verts = []
-    ctx.prim_swaps = []
+    st.open_ops = len(st.ops)
+    st.open_fl = len(st.fl)
+    st.ops.append(BGN)
+    st.ops.append(KIND_OF[prim])
+
+
+def _outside(name: str, args: tuple, prim, need) -> None:
+    where = "outside bgn*/end*" if prim is None else f"inside {OPENER[prim]}()"
+    hint = f"call {OPENER[need]}() first" if need else "call bgnpolygon(), bgnline(), ... first"
+    raise GLUsageError(f"{describe(name, args)}: vertex {where} ({hint})")
 
 
 def vertex(ctx, name: str, args: tuple, xyzw, need: str | None = None) -> None:
     """Record one vertex with the current colour and normal (per-vertex Gouraud)."""
     prim = ctx.prim
     if prim is None or (need is not None and prim != need):
-        where = "outside bgn*/end*" if prim is None else f"inside {OPENER[prim]}()"
-        hint = f"call {OPENER[need]}() first" if need else "call bgnpolygon(), bgnline(), ... first"
-        raise GLUsageError(f"{describe(name, args)}: vertex {where} ({hint})")
-    ctx.prim_verts.append((xyzw, ctx.colour, ctx.normal, ctx.last_sent == "normal"))
+        _outside(name, args, prim, need)
+    st = ctx.stream
+    if (ctx.colour is not st.colour or ctx.normal is not st.normal
+            or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)
+    st.ops.append(V)
+    st.fl.extend(xyzw)
 
 
 def end(ctx, name: str, args: tuple, prim: str) -> None:
-    """Close the open primitive and draw it with one ``draw_arrays`` call."""
+    """Close the open primitive (drawn at the next flush)."""
     if ctx.prim != prim:
         state = "no primitive is open" if ctx.prim is None else f"{OPENER[ctx.prim]}() is open"
         raise GLUsageError(f"{describe(name, args)}: without {OPENER[prim]}() ({state})")
-    verts, swaps = ctx.prim_verts, ctx.prim_swaps
-    ctx.prim, ctx.prim_verts, ctx.prim_swaps = None, [], []
-    if verts:
-        draw_vertices(ctx, DRAW_KIND[prim], verts, swaps)
+    ctx.prim = None
+    ctx.stream.ops.append(END)
+    if prim in ("line", "closedline"):
+        drain(ctx)  # the line-style position after the line is needed by move/draw
 
 
-def vertex_arrays(verts: Sequence) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(obj (N, 4), colours (N, 4), normals (N, 3), normal_sent_last (N,)) of recorded
-    vertices."""
-    pos, cols, nrms, sent = zip(*verts, strict=True)
-    return (np.array(pos, dtype=np.float64), np.array(cols, dtype=np.float64),
-            np.array(nrms, dtype=np.float64), np.array(sent, dtype=bool))
+def swap(ctx, name: str, args: tuple) -> None:
+    if ctx.prim != "tmesh":
+        raise GLUsageError(f"{describe(name, args)}: swaptmesh outside "
+                           f"bgntmesh()/endtmesh()")
+    ctx.stream.ops.append(SWAP)
 
 
 def lit_mask(ctx, normal_sent: np.ndarray) -> np.ndarray:
@@ -163,12 +216,6 @@ def lit_mask(ctx, normal_sent: np.ndarray) -> np.ndarray:
     return normal_sent
 
 
-def draw_vertices(ctx, kind: str, verts: Sequence, swaps: Sequence[int] = ()) -> None:
-    """Draw recorded vertices as one primitive of ``kind`` (draw_arrays kinds)."""
-    obj, cols, nrms, sent = vertex_arrays(verts)
-    ctx.draw_arrays(kind, obj, cols, nrms, lit_mask(ctx, sent), swaps=list(swaps))
-
-
 def apply_ops(ctx, name: str, args: tuple, ops) -> None:
     """Execute stream operations (see the module docstring) on ``ctx``."""
     for op in ops:
@@ -178,7 +225,7 @@ def apply_ops(ctx, name: str, args: tuple, ops) -> None:
         elif tag == "pv":
             vertex(ctx, name, args, op[1], need="pmv")
         elif tag == "n":
-            ctx.normal = op[1]
+            ctx.normal = tuple(op[1])
             ctx.last_sent = "normal"
         elif tag == "t":
             ctx.texcoord = op[1]
@@ -189,10 +236,7 @@ def apply_ops(ctx, name: str, args: tuple, ops) -> None:
         elif tag == "end":
             end(ctx, name, args, op[1])
         elif tag == "swap":
-            if ctx.prim != "tmesh":
-                raise GLUsageError(f"{describe(name, args)}: swaptmesh outside "
-                                   f"bgntmesh()/endtmesh()")
-            ctx.prim_swaps.append(len(ctx.prim_verts))
+            swap(ctx, name, args)
         else:  # pragma: no cover - programming error
             raise AssertionError(tag)
 
@@ -260,24 +304,56 @@ swaptmesh = stream_call(
 
 
 # -- vertices ----------------------------------------------------------------------------
+_W = {2: (0.0, 1.0), 3: (1.0,), 4: ()}  # what a vertex call appends after its values
+
+
 def _vertex_call(n: int, suffix: str):
     name = f"v{n}{suffix}"
     integer = suffix in ("s", "i")
+    tail = _W[n]
 
     def parse(args: tuple) -> list:
         return [("v", _xyzw(coords(name, args, n, integer)))]
 
-    def call(*args):
-        # Inlined hot path of parse + apply_ops (one vertex per call).
-        vertex(current(name, args), name, args, _xyzw(coords(name, args, n, integer)))
+    def call(*args, **kwargs):
+        rec = session.recording
+        if rec is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = current(name, args)
+        prim = ctx.prim
+        if prim is None:
+            _outside(name, args, prim, None)
+        seq = args
+        if len(args) == 1:
+            a0 = args[0]
+            if type(a0) is tuple or type(a0) is list:
+                seq = a0
+            elif type(a0) is np.ndarray and not integer and a0.ndim == 1:
+                seq = a0.tolist()
+        # Fast path: n plain floats, all finite (x - x is NaN for NaN and inf).
+        if not integer and len(seq) == n and all(type(v) is float for v in seq) and all(
+                v - v == 0.0 for v in seq):
+            vals = seq
+        else:
+            vals = coords(name, args, n, integer)
+        st = ctx.stream
+        if (ctx.colour is not st.colour or ctx.normal is not st.normal
+                or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+            sync(ctx, st)
+        st.ops.append(V)
+        fl = st.fl
+        fl.extend(vals)
+        if tail:
+            fl.extend(tail)
 
     kind = "ints" if integer else "numbers"
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): a vertex from {n} {kind}, as {name}(x, ...) or "
                     f"{name}((x, ...)); only between bgn* and end* (v(3G)).")
-    wrapped = gl_function(record=True)(call)
-    wrapped.stream = parse
-    return wrapped
+    call.__wrapped__ = call
+    call.gl_record = True
+    call.stream = parse
+    return call
 
 
 v2s, v2i, v2f, v2d = (_vertex_call(2, s) for s in "sifd")
@@ -285,18 +361,39 @@ v3s, v3i, v3f, v3d = (_vertex_call(3, s) for s in "sifd")
 v4s, v4i, v4f, v4d = (_vertex_call(4, s) for s in "sifd")
 
 
-def _normal_parse(name: str):
+def _normal_call(name: str, doc: str):
     def parse(args: tuple) -> list:
         return [("n", coords(name, args, 3))]
 
-    return parse
+    def call(*args, **kwargs):
+        rec = session.recording
+        if rec is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = current(name, args)
+        seq = args
+        if len(args) == 1:
+            a0 = args[0]
+            if type(a0) is tuple:
+                seq = a0
+            elif type(a0) is np.ndarray and a0.ndim == 1:
+                seq = tuple(a0.tolist())
+        if not (len(seq) == 3 and all(type(v) is float for v in seq)
+                and all(v - v == 0.0 for v in seq)):
+            seq = coords(name, args, 3)
+        ctx.normal = seq  # a tuple of 3 floats, new at every call (the stream's sync)
+        ctx.last_sent = "normal"
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = doc
+    call.__wrapped__ = call
+    call.gl_record = True
+    call.stream = parse
+    return call
 
 
-n3f = stream_call("n3f", _normal_parse("n3f"),
-                  "n3f((nx, ny, nz)) or n3f(nx, ny, nz): the current normal; with "
-                  "lmcolor(LMC_COLOR) the following vertices are lit (n3f(3G)).")
-normal = stream_call("normal", _normal_parse("normal"),
-                     "normal((nx, ny, nz)): the obsolete form of n3f.")
+n3f = _normal_call("n3f", "n3f((nx, ny, nz)) or n3f(nx, ny, nz): the current normal; with "
+                          "lmcolor(LMC_COLOR) the following vertices are lit (n3f(3G)).")
+normal = _normal_call("normal", "normal((nx, ny, nz)): the obsolete form of n3f.")
 
 
 def _tex_call(suffix: str):

@@ -74,6 +74,7 @@ def lmdef(deftype: int, index: int, *rest) -> None:
     """
     args = (deftype, index) + rest
     ctx = current("lmdef", args)
+    ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
     dt = as_int("lmdef", args, "deftype", deftype)
     if dt not in _DEFTYPES:
         raise GLValueError(f"{describe('lmdef', args)}: deftype {dt} is not a valid token "
@@ -117,6 +118,7 @@ def lmbind(target: int, index: int) -> None:
     """
     args = (target, index)
     ctx = current("lmbind", args)
+    ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
     t = as_int("lmbind", args, "target", target)
     if t not in _TARGETS:
         raise GLValueError(f"{describe('lmbind', args)}: target {t} is not a valid token "
@@ -153,5 +155,6 @@ def lmcolor(mode: int) -> None:
     """
     args = (mode,)
     ctx = current("lmcolor", args)
+    ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
     ctx.lmcolor_mode = check_token("lmcolor", args, "mode", mode, range(7), "LMC_")
     ctx.lmcolor_set = False

@@ -1,0 +1,165 @@
+"""At a flush: decode a window's command stream and draw what it holds.
+
+The decode kernel (:func:`vgxsim.kernels.decode.decode_stream`) resolves every
+vertex's colour, normal and lit flag in one pass and cuts the primitives; here the
+primitives are grouped -- consecutive triangle primitives of one draw state become
+one triangle list, fanned at once -- and handed to the geometry passes
+(:mod:`.draw`).
+"""
+
+from __future__ import annotations
+
+from array import array
+
+import numpy as np
+
+from vgxsim.geometry import assembly
+from vgxsim.kernels.decode import decode_stream
+from vgxsim.stream.opcodes import (
+    CLOSEDLINE,
+    LINE,
+    NAME_OF,
+    P_KIND,
+    P_LMCOLOR_SET,
+    P_STATE,
+    PMV,
+    POINT,
+    POLYGON,
+    QSTRIP,
+    TMESH,
+)
+
+from .draw import defer_triangles, draw_arrays
+
+_TRIANGLES = np.zeros(16, bool)
+_TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
+
+
+def drain(ctx) -> None:
+    """Decode and draw the window's stream up to its open primitive, if any."""
+    s = ctx.stream
+    nops = len(s.ops)
+    if nops == 0:
+        return
+    cut_ops, cut_fl = (s.open_ops, s.open_fl) if ctx.prim is not None else (nops, len(s.fl))
+    if cut_ops <= 0:
+        return
+    ops = np.frombuffer(s.ops, dtype=np.int64)
+    fl = np.frombuffer(s.fl, dtype=np.float64) if len(s.fl) else np.zeros(0)
+    pos, col, nrm, sent, prims, swaps = decode_stream(ops, cut_ops, fl, s.attrs)
+    del ops, fl  # release the buffer exports before the arrays are resized
+    if cut_ops == nops:
+        s.ops = array("q")
+        s.fl = array("d")
+    else:
+        s.ops = s.ops[cut_ops:]
+        s.fl = s.fl[cut_fl:]
+        s.open_ops, s.open_fl = 0, 0
+    records = ctx.states.records
+    _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps)
+    if ctx.prim is None:
+        ctx.states.clear()
+        s.attrs[9] = -1.0
+        s.raster = None  # the next bgn* records its state again
+
+
+def _lit(state, sent: np.ndarray) -> np.ndarray:
+    """Which vertices are lit: with LMC_COLOR those whose normal was sent after the
+    last colour; in every other lmcolor mode colour calls change the material (or are
+    ignored, LMC_NULL), so every vertex is lit (lmcolor(3G))."""
+    if state.lmcolor_mode != 0:
+        return np.ones(sent.shape[0], dtype=bool)
+    return sent
+
+
+def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
+    npr = prims.shape[0]
+    if npr == 0:
+        return
+    kinds = prims[:, P_KIND]
+    tri = _TRIANGLES[kinds]
+    key = prims[:, P_STATE] * 2 + prims[:, P_LMCOLOR_SET]
+    # A group: consecutive triangle primitives with one state record and lmcolor_set.
+    brk = np.ones(npr, bool)
+    brk[1:] = ~(tri[1:] & tri[:-1] & (key[1:] == key[:-1]))
+    starts = np.flatnonzero(brk).tolist()
+    ends = starts[1:] + [npr]
+    rows = prims.tolist()
+    for a, b in zip(starts, ends, strict=True):
+        kind, v0, v1, si, lms = rows[a][0], rows[a][1], rows[b - 1][2], rows[a][3], rows[a][4]
+        if v1 == v0:
+            continue  # bgn*/end* without vertices draws nothing
+        state = records[si]
+        sl = slice(v0, v1)
+        lit = _lit(state, sent[sl])
+        if not tri[a]:
+            # Lines and points: one primitive per group (the line-style pattern
+            # restarts at every bgnline).
+            draw_arrays(ctx, state, bool(lms), NAME_OF[kind], pos[sl], col[sl], nrm[sl], lit,
+                        private=True)
+            continue
+        if state.concave or b - a == 1:
+            for r in rows[a:b]:
+                if r[2] == r[1]:
+                    continue
+                ps = slice(r[1], r[2])
+                name = "polygon" if r[0] in (POLYGON, PMV) else NAME_OF[r[0]]
+                draw_arrays(ctx, state, bool(lms), name, pos[ps], col[ps], nrm[ps],
+                            _lit(state, sent[ps]), swaps=swaps[r[5]:r[6]].tolist(),
+                            private=True)
+            continue
+        tris, prov = _group_triangles(rows[a:b], v0, swaps)
+        normals = nrm[sl] if state.lighting is not None else None
+        cols = col[sl] if _wants_colour(state) else None
+        defer_triangles(ctx, state, bool(lms), pos[sl], cols, normals,
+                        lit if normals is not None else None, tris, prov)
+
+
+def _wants_colour(state) -> bool:
+    from vgxsim.state.raster import needs_colour
+
+    return needs_colour(state.raster)
+
+
+def _group_triangles(rows: list, base: int, swaps: np.ndarray):
+    """Triangles (indices from ``base``) and flat-shading vertices of consecutive
+    primitives: runs of polygons are fanned in one go, each as assembly.polygon_fan
+    fans it (first vertex, i, i + 1; the last vertex provokes)."""
+    tris, prov, fans = [], [], []
+    for r in rows + [None]:
+        if r is not None and r[0] in (POLYGON, PMV):
+            if r[2] > r[1]:
+                fans.append((r[1] - base, r[2] - r[1]))
+            continue
+        if fans:
+            t, pv = _fans(fans)
+            tris.append(t)
+            prov.append(pv)
+            fans = []
+        if r is None or r[2] == r[1]:
+            continue
+        n = r[2] - r[1]
+        off = r[1] - base
+        if r[0] == TMESH:
+            t = assembly.tmesh_triangles(n, swaps[r[5]:r[6]].tolist())
+            pv = t[:, 2].copy()
+        else:
+            t = assembly.qstrip_triangles(n)
+            pv = t.max(axis=1) if t.shape[0] else np.zeros(0, np.int64)
+        tris.append(np.asarray(t, np.int64).reshape(-1, 3) + off)
+        prov.append(np.asarray(pv, np.int64) + off)
+    return np.concatenate(tris).astype(np.int64), np.concatenate(prov).astype(np.int64)
+
+
+def _fans(polys: list[tuple[int, int]]) -> tuple[np.ndarray, np.ndarray]:
+    """Fan triangles (first, i, i + 1) of consecutive polygons given as (start, size),
+    in order, with each polygon's last vertex as the flat-shading vertex."""
+    start, size = (np.array(v, dtype=np.int64) for v in zip(*polys, strict=True))
+    ntri = np.maximum(size - 2, 0)
+    first = np.repeat(start, ntri)
+    k = np.arange(int(ntri.sum()), dtype=np.int64) - np.repeat(np.cumsum(ntri) - ntri, ntri)
+    tris = np.stack([first, first + 1 + k, first + 2 + k], axis=1)
+    return tris, np.repeat(start + size - 1, ntri)
+
+
+__all__ = ["drain", "LINE", "CLOSEDLINE", "POINT"]
