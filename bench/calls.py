@@ -34,15 +34,21 @@ sys.path.insert(0, HERE)
 N_CALLS = 2000  # calls per timed loop
 
 
-def _median_ns(loop, n: int, rounds: int) -> float:
+def _median_ns(loop, n: int, rounds: int, before=None, after=None) -> float:
     """Median over ``rounds`` of the time of ``loop()`` (which makes ``n`` calls), in
-    ns per call."""
-    loop()
+    ns per call; ``before()`` and ``after()`` run untimed around each round (opening
+    the primitive the vertices go into, drawing it)."""
     ts = []
-    for _ in range(rounds):
+    for r in range(rounds + 1):
+        if before is not None:
+            before()
         t = time.perf_counter_ns()
         loop()
-        ts.append(time.perf_counter_ns() - t)
+        dt = time.perf_counter_ns() - t
+        if after is not None:
+            after()
+        if r:  # the first round warms up
+            ts.append(dt)
     return float(np.median(ts)) / n
 
 
@@ -67,13 +73,9 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
     bgn, end = gl.bgnpolygon, gl.endpolygon
     p = (1.0, 2.0, 0.0)
 
-    def inside_polygon(body):
-        def loop():
-            bgn()
-            body()
-            end()
-            ctx.flush()
-        return loop
+    def close():
+        end()
+        ctx.flush()
 
     def loop_v3f():
         for _ in range(n):
@@ -95,8 +97,8 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
         for _ in range(n):
             cpack(0xFF00FF00)
 
-    out["v3f(x, y, z)"] = _median_ns(inside_polygon(loop_v3f), n, rounds)
-    out["v3f((x, y, z))"] = _median_ns(inside_polygon(loop_v3f_seq), n, rounds)
+    out["v3f(x, y, z)"] = _median_ns(loop_v3f, n, rounds, bgn, close)
+    out["v3f((x, y, z))"] = _median_ns(loop_v3f_seq, n, rounds, bgn, close)
     out["n3f"] = _median_ns(loop_n3f, n, rounds)
     out["c3f"] = _median_ns(loop_c3f, n, rounds)
     out["cpack"] = _median_ns(loop_cpack, n, rounds)
@@ -105,9 +107,9 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
         for _ in range(n):
             bgn()
             end()
-        ctx.flush()
 
-    out["bgnpolygon+endpolygon (empty)"] = _median_ns(loop_bgnend, n, rounds) / 2
+    out["bgnpolygon+endpolygon (empty)"] = _median_ns(loop_bgnend, n, rounds,
+                                                      after=ctx.flush) / 2
 
     def loop_stencil():
         for i in range(n):
@@ -155,12 +157,11 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
             v3f(quad[2])
             v3f(quad[3])
             end()
-        ctx.flush()
 
     gl.zwritemask(0)
     gl.wmpack(0)
     out["stencil+bgnpolygon+4 v3f+endpolygon (per call)"] = _median_ns(
-        loop_face, n, rounds) / 7
+        loop_face, n, rounds, after=ctx.flush) / 7
     gl.zwritemask(0xFFFFFFFF)
     gl.wmpack(0xFFFFFFFF)
     gl.stencil(0, 0, GL.SF_ALWAYS, 0xFF, GL.ST_KEEP, GL.ST_KEEP, GL.ST_KEEP)
@@ -176,9 +177,8 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
     def loop_callobj():
         for _ in range(n // 4):
             gl.callobj(1)
-        ctx.flush()
 
-    out["callobj (1 quad)"] = _median_ns(loop_callobj, n // 4, rounds)
+    out["callobj (1 quad)"] = _median_ns(loop_callobj, n // 4, rounds, after=ctx.flush)
     gl.winclose(gid)
     return out
 

@@ -98,10 +98,16 @@ def _ints(name: str, args: tuple, n: int) -> tuple[float, ...]:
 
 
 # -- RGBmode -------------------------------------------------------------------------
+_BYTE = tuple(v / 255.0 for v in range(256))  # a colour byte as a [0, 1] float
+
+
 def _cpack_rgba(args: tuple) -> tuple[float, float, float, float]:
-    w = as_int("cpack", args, "abgr", args[0]) & 0xFFFFFFFF  # C unsigned long
-    return ((w & 0xFF) / 255.0, ((w >> 8) & 0xFF) / 255.0, ((w >> 16) & 0xFF) / 255.0,
-            ((w >> 24) & 0xFF) / 255.0)
+    w = args[0]
+    if type(w) is not int:
+        w = as_int("cpack", args, "abgr", w)
+    w &= 0xFFFFFFFF  # C unsigned long
+    return (_BYTE[w & 0xFF], _BYTE[(w >> 8) & 0xFF], _BYTE[(w >> 16) & 0xFF],
+            _BYTE[w >> 24])
 
 
 def _rgbcolor_rgba(args: tuple) -> tuple[float, float, float, float]:
@@ -169,7 +175,8 @@ def cpack(abgr: int) -> None:
     """
     args = (abgr,)
     ctx = current("cpack", args)
-    _need_rgb(ctx, "cpack", args)
+    if not ctx.config.rgb:
+        _need_rgb(ctx, "cpack", args)
     _set_rgba(ctx, _cpack_rgba(args))
 
 

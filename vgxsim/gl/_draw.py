@@ -259,23 +259,60 @@ def stream_call(name: str, parse: Callable[[tuple], list], doc: str):
 # -- primitives ------------------------------------------------------------------------
 def _bgn(prim: str):
     name = OPENER[prim]
+    code = KIND_OF[prim]
 
     def parse(args: tuple) -> list:
         _no_args(name, args)
         return [("bgn", prim)]
 
-    return stream_call(name, parse, f"{name}(): open a {prim} primitive ({name}(3G)).")
+    def call(*args, **kwargs):
+        if session.recording is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = session.windows.get(session.current)
+        if ctx is None or ctx.prim is not None:
+            begin(current(name, args), name, args, prim)  # raises
+        st = ctx.stream
+        _restate(ctx, st)
+        ctx.prim = prim
+        ops = st.ops
+        st.open_ops = len(ops)
+        st.open_fl = len(st.fl)
+        ops.append(BGN)
+        ops.append(code)
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = f"{name}(): open a {prim} primitive ({name}(3G))."
+    call.__wrapped__ = call
+    call.gl_record = True
+    call.stream = parse
+    return call
 
 
 def _end(prim: str):
     name = CLOSER[prim]
+    drains = prim in ("line", "closedline")
 
     def parse(args: tuple) -> list:
         _no_args(name, args)
         return [("end", prim)]
 
-    return stream_call(name, parse, f"{name}(): close the {prim} and draw it; "
-                                    f"GLUsageError without {OPENER[prim]}().")
+    def call(*args, **kwargs):
+        if session.recording is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = session.windows.get(session.current)
+        if ctx is None or ctx.prim != prim or drains:
+            end(current(name, args), name, args, prim)
+            return
+        ctx.prim = None
+        ctx.stream.ops.append(END)
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = (f"{name}(): close the {prim} and draw it; GLUsageError without "
+                    f"{OPENER[prim]}().")
+    call.__wrapped__ = call
+    call.gl_record = True
+    call.stream = parse
+    return call
 
 
 bgnpolygon, endpolygon = _bgn("polygon"), _end("polygon")
@@ -307,6 +344,37 @@ swaptmesh = stream_call(
 _W = {2: (0.0, 1.0), 3: (1.0,), 4: ()}  # what a vertex call appends after its values
 
 
+# Fast-path tests: n plain floats, all finite (x - x is NaN for NaN and inf).
+def _plain2(s) -> bool:
+    if len(s) != 2:
+        return False
+    x, y = s
+    return type(x) is float and type(y) is float and x - x == 0.0 and y - y == 0.0
+
+
+def _plain3(s) -> bool:
+    if len(s) != 3:
+        return False
+    x, y, z = s
+    return (type(x) is float and type(y) is float and type(z) is float
+            and x - x == 0.0 and y - y == 0.0 and z - z == 0.0)
+
+
+def _plain4(s) -> bool:
+    if len(s) != 4:
+        return False
+    x, y, z, w = s
+    return (type(x) is float and type(y) is float and type(z) is float and type(w) is float
+            and x - x == 0.0 and y - y == 0.0 and z - z == 0.0 and w - w == 0.0)
+
+
+def _never(s) -> bool:
+    return False
+
+
+_PLAIN = {2: _plain2, 3: _plain3, 4: _plain4}
+
+
 def _vertex_call(n: int, suffix: str):
     name = f"v{n}{suffix}"
     integer = suffix in ("s", "i")
@@ -319,10 +387,9 @@ def _vertex_call(n: int, suffix: str):
         rec = session.recording
         if rec is not None or kwargs:
             return record_or_refuse(call, args, kwargs)
-        ctx = current(name, args)
-        prim = ctx.prim
-        if prim is None:
-            _outside(name, args, prim, None)
+        ctx = session.windows.get(session.current)
+        if ctx is None or ctx.prim is None:
+            _outside(name, args, current(name, args).prim, None)
         seq = args
         if len(args) == 1:
             a0 = args[0]
@@ -330,12 +397,7 @@ def _vertex_call(n: int, suffix: str):
                 seq = a0
             elif type(a0) is np.ndarray and not integer and a0.ndim == 1:
                 seq = a0.tolist()
-        # Fast path: n plain floats, all finite (x - x is NaN for NaN and inf).
-        if not integer and len(seq) == n and all(type(v) is float for v in seq) and all(
-                v - v == 0.0 for v in seq):
-            vals = seq
-        else:
-            vals = coords(name, args, n, integer)
+        vals = seq if fast(seq) else coords(name, args, n, integer)
         st = ctx.stream
         if (ctx.colour is not st.colour or ctx.normal is not st.normal
                 or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
@@ -346,6 +408,7 @@ def _vertex_call(n: int, suffix: str):
         if tail:
             fl.extend(tail)
 
+    fast = _never if integer else _PLAIN[n]
     kind = "ints" if integer else "numbers"
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): a vertex from {n} {kind}, as {name}(x, ...) or "
@@ -369,7 +432,9 @@ def _normal_call(name: str, doc: str):
         rec = session.recording
         if rec is not None or kwargs:
             return record_or_refuse(call, args, kwargs)
-        ctx = current(name, args)
+        ctx = session.windows.get(session.current)
+        if ctx is None:
+            ctx = current(name, args)
         seq = args
         if len(args) == 1:
             a0 = args[0]
@@ -377,8 +442,7 @@ def _normal_call(name: str, doc: str):
                 seq = a0
             elif type(a0) is np.ndarray and a0.ndim == 1:
                 seq = tuple(a0.tolist())
-        if not (len(seq) == 3 and all(type(v) is float for v in seq)
-                and all(v - v == 0.0 for v in seq)):
+        if not _plain3(seq):
             seq = coords(name, args, 3)
         ctx.normal = seq  # a tuple of 3 floats, new at every call (the stream's sync)
         ctx.last_sent = "normal"

@@ -162,8 +162,17 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
     Enabling without stencil planes (stensize 0) is stored but has no effect: the
     manual allows stencil only where planes exist, and the kernels skip the test.
     """
+    ctx = current("stencil", (enable, ref, func, mask, fail, pass_, zpass))
+    if (type(enable) is int and enable and type(ref) is int and type(func) is int
+            and type(mask) is int and type(fail) is int and type(pass_) is int
+            and type(zpass) is int and 0 <= func <= 7 and 0 <= fail <= 5
+            and 0 <= pass_ <= 5 and 0 <= zpass <= 5):
+        # Fast path (plain ints, valid tokens): the checks below, inlined.
+        regs = ctx.raster
+        regs.stencil = (True, ref & _U32, func, mask & _U32, fail, pass_, zpass)
+        regs._snapshot = None
+        return
     args = (enable, ref, func, mask, fail, pass_, zpass)
-    ctx = current("stencil", args)
     on = as_int("stencil", args, "enable", enable) != 0
     if not on:
         ctx.raster.set(stencil=(False,) + tuple(ctx.raster.stencil[1:]))

@@ -31,6 +31,11 @@ from vgxsim.stream.opcodes import (
 
 from .draw import defer_triangles, draw_arrays
 
+#: Fast-path switch: one geometry pass for consecutive triangle primitives whose
+#: records differ only in fragment state (stencil before every 1991 shadow face).
+#: False: one pass per record (tests/stream/test_random_streams.py compares).
+MERGE_FRAGMENT_STATES = True
+
 _TRIANGLES = np.zeros(16, bool)
 _TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
 
@@ -78,8 +83,13 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
         return
     kinds = prims[:, P_KIND]
     tri = _TRIANGLES[kinds]
-    key = prims[:, P_STATE] * 2 + prims[:, P_LMCOLOR_SET]
-    # A group: consecutive triangle primitives with one state record and lmcolor_set.
+    if MERGE_FRAGMENT_STATES:
+        geometry = np.asarray(ctx.states.geometry, np.int64)[prims[:, P_STATE]]
+    else:
+        geometry = prims[:, P_STATE]
+    key = geometry * 2 + prims[:, P_LMCOLOR_SET]
+    # A group: consecutive triangle primitives of one geometry class (records that
+    # differ at most in fragment state) and one lmcolor_set.
     brk = np.ones(npr, bool)
     brk[1:] = ~(tri[1:] & tri[:-1] & (key[1:] == key[:-1]))
     starts = np.flatnonzero(brk).tolist()
@@ -103,16 +113,21 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
                 if r[2] == r[1]:
                     continue
                 ps = slice(r[1], r[2])
+                st = records[r[3]]
                 name = "polygon" if r[0] in (POLYGON, PMV) else NAME_OF[r[0]]
-                draw_arrays(ctx, state, bool(lms), name, pos[ps], col[ps], nrm[ps],
-                            _lit(state, sent[ps]), swaps=swaps[r[5]:r[6]].tolist(),
+                draw_arrays(ctx, st, bool(lms), name, pos[ps], col[ps], nrm[ps],
+                            _lit(st, sent[ps]), swaps=swaps[r[5]:r[6]].tolist(),
                             private=True)
             continue
-        tris, prov = _group_triangles(rows[a:b], v0, swaps)
+        tris, prov, tri_prim = _group_triangles(rows[a:b], v0, swaps)
+        tri_states = None
+        recs = [records[r[3]] for r in rows[a:b]]
+        if any(r.raster is not state.raster for r in recs):
+            tri_states = (recs, tri_prim)  # one entry per primitive of the group
         normals = nrm[sl] if state.lighting is not None else None
         cols = col[sl] if _wants_colour(state) else None
         defer_triangles(ctx, state, bool(lms), pos[sl], cols, normals,
-                        lit if normals is not None else None, tris, prov)
+                        lit if normals is not None else None, tris, prov, tri_states)
 
 
 def _wants_colour(state) -> bool:
@@ -122,20 +137,24 @@ def _wants_colour(state) -> bool:
 
 
 def _group_triangles(rows: list, base: int, swaps: np.ndarray):
-    """Triangles (indices from ``base``) and flat-shading vertices of consecutive
-    primitives: runs of polygons are fanned in one go, each as assembly.polygon_fan
-    fans it (first vertex, i, i + 1; the last vertex provokes)."""
-    tris, prov, fans = [], [], []
-    for r in rows + [None]:
+    """Triangles (indices from ``base``), flat-shading vertices and primitive (its
+    position in ``rows``) of consecutive primitives: runs of polygons are fanned in one go, each as
+    assembly.polygon_fan fans it (first vertex, i, i + 1; the last vertex
+    provokes)."""
+    tris, prov, recs, fans, fan_recs = [], [], [], [], []
+    for k, r in enumerate(rows + [None]):
         if r is not None and r[0] in (POLYGON, PMV):
             if r[2] > r[1]:
                 fans.append((r[1] - base, r[2] - r[1]))
+                fan_recs.append(k)
             continue
         if fans:
             t, pv = _fans(fans)
             tris.append(t)
             prov.append(pv)
-            fans = []
+            ntri = np.maximum(np.array([f[1] for f in fans], np.int64) - 2, 0)
+            recs.append(np.repeat(np.array(fan_recs, np.int64), ntri))
+            fans, fan_recs = [], []
         if r is None or r[2] == r[1]:
             continue
         n = r[2] - r[1]
@@ -146,9 +165,12 @@ def _group_triangles(rows: list, base: int, swaps: np.ndarray):
         else:
             t = assembly.qstrip_triangles(n)
             pv = t.max(axis=1) if t.shape[0] else np.zeros(0, np.int64)
-        tris.append(np.asarray(t, np.int64).reshape(-1, 3) + off)
+        t = np.asarray(t, np.int64).reshape(-1, 3)
+        tris.append(t + off)
         prov.append(np.asarray(pv, np.int64) + off)
-    return np.concatenate(tris).astype(np.int64), np.concatenate(prov).astype(np.int64)
+        recs.append(np.full(t.shape[0], k, np.int64))
+    return (np.concatenate(tris).astype(np.int64), np.concatenate(prov).astype(np.int64),
+            np.concatenate(recs))
 
 
 def _fans(polys: list[tuple[int, int]]) -> tuple[np.ndarray, np.ndarray]:

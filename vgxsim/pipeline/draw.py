@@ -18,7 +18,7 @@ from vgxsim.geometry.transform import apply
 from vgxsim.lighting import shade
 from vgxsim.state.raster import FLAT, needs_colour
 
-from .records import DrawState, same_state
+from .records import DrawState, same_geometry, same_state
 
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
     "polygon", "tmesh", "qstrip", "line", "closedline", "point")
@@ -69,7 +69,11 @@ def shade_vertices(state: DrawState, lmcolor_set: bool, obj, normals, colours, l
 
 
 class PendingTriangles:
-    """Triangle draws queued for one combined geometry pass."""
+    """Triangle draws queued for one combined geometry pass.
+
+    ``parts`` are (obj, cols, normals, lit, tris, prov, rasters): ``rasters`` is
+    None (the state's raster) or (list of RasterState, per-triangle index).
+    """
 
     __slots__ = ("state", "lmcolor_set", "parts", "n")
 
@@ -80,19 +84,56 @@ class PendingTriangles:
         self.n = 0
 
 
+def merge_fragment_states() -> bool:
+    from . import decode
+
+    return decode.MERGE_FRAGMENT_STATES
+
+
 def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
-                    tris, prov) -> None:
-    """Queue one primitive's (or one group's) triangles on ``ctx``."""
+                    tris, prov, tri_states=None) -> None:
+    """Queue one primitive's (or one group's) triangles on ``ctx``.
+
+    ``tri_states`` (list of DrawState, per-triangle index) gives triangles of several
+    records that :func:`~.records.same_geometry` joins; ``state`` is one of them.
+    """
     pend = ctx.pending_triangles
     lms = override_of(state, lmcolor_set) is not None if normals is not None else False
-    if pend is not None and not (same_state(pend.state, state) and pend.lmcolor_set == lms):
+    if pend is not None and not (pend.lmcolor_set == lms and (
+            same_state(pend.state, state) or (merge_fragment_states()
+                                              and same_geometry(pend.state, state)))):
         commit_triangles(ctx)
         pend = None
     if pend is None:
         pend = ctx.pending_triangles = PendingTriangles(state, lms)
+    rasters = None
+    if tri_states is not None:
+        recs, per_tri = tri_states
+        rasters = ([r.raster for r in recs], per_tri)
+    elif state.raster is not pend.state.raster:
+        rasters = ([state.raster], np.zeros(tris.shape[0], np.int64))
     base = pend.n
-    pend.parts.append((obj, cols, normals, lit, tris + base, prov + base))
+    pend.parts.append((obj, cols, normals, lit, tris + base, prov + base, rasters))
     pend.n = base + obj.shape[0]
+
+
+def _triangle_states(pend: PendingTriangles):
+    """(list of RasterState, per-triangle index) of the queued parts, or None when
+    they all draw with the pending state's raster.  The list keeps one entry per
+    primitive (entries may repeat), so a capture of the batch's input
+    (vgxsim.reference.recorder) still sees one record per primitive."""
+    if all(p[6] is None for p in pend.parts):
+        return None
+    states = [pend.state.raster]
+    per = []
+    for p in pend.parts:
+        if p[6] is None:
+            per.append(np.zeros(p[4].shape[0], np.int64))
+            continue
+        rl, idx = p[6]
+        per.append(idx + len(states))
+        states.extend(rl)
+    return states, np.concatenate(per)
 
 
 def commit_triangles(ctx) -> None:
@@ -103,6 +144,7 @@ def commit_triangles(ctx) -> None:
     state = pend.state
     rs = state.raster
     parts = pend.parts
+    tri_states = _triangle_states(pend)
 
     def joined(i):
         # One part (a mesh drawn in one call) needs no concatenation copy.
@@ -137,7 +179,7 @@ def commit_triangles(ctx) -> None:
             rgba = cols
     flat = None if (rgba is None or rs.shademodel != FLAT) else rgba[prov]
     draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth), obj,
-                   rgba, tris, flat)
+                   rgba, tris, flat, tri_states=tri_states)
 
 
 def as_homogeneous(obj) -> np.ndarray:

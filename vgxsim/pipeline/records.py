@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from vgxsim.state.raster import RasterState
+from vgxsim.state.raster import RasterState, needs_colour
 
 
 class LightingState(NamedTuple):
@@ -92,25 +92,63 @@ def same_state(a: DrawState, b: DrawState) -> bool:
             and a.concave == b.concave and same_lighting(a.lighting, b.lighting))
 
 
+def same_geometry(a: DrawState, b: DrawState) -> bool:
+    """Whether two records differ at most in what only the fragment stage reads
+    (stencil, z and blend functions, write masks, cull): then their triangles share
+    one geometry pass (transform, lighting, clipping, projection, snapping)."""
+    ra, rb = a.raster, b.raster
+    return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
+            and a.lmcolor_mode == b.lmcolor_mode and a.concave == b.concave
+            and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
+            and needs_colour(ra) == needs_colour(rb)
+            and same_lighting(a.lighting, b.lighting))
+
+
 class StateTable:
-    """A window's interned DrawState records (indices of STATE ops)."""
+    """A window's interned DrawState records (indices of STATE ops).
+
+    ``geometry[i]`` numbers the geometry class of record ``i``: consecutive records
+    that :func:`same_geometry` joins share a number.
+    """
 
     def __init__(self):
         self.records: list[DrawState] = []
+        self.geometry: list[int] = []
         self._last: DrawState | None = None
+        self._index: dict[tuple, int] = {}
 
     def intern(self, ctx) -> int:
-        """Index of the window's current draw state (a new record if it changed)."""
+        """Index of the window's current draw state (one record per distinct value:
+        the key holds the identities of its immutable parts and the lighting
+        serial, which every lighting call bumps)."""
+        rs = ctx.raster.snapshot()
+        mvp = ctx.matrices.mvp()
+        key = (id(rs), id(mvp), ctx.raster.viewport, ctx.depth_range, ctx.lighting_serial,
+               ctx.lmcolor_mode, ctx.concave, ctx.config.rgb, id(ctx.bound["lights"]))
+        idx = self._index.get(key)
+        if idx is not None and self.records[idx].raster is rs and self.records[idx].mvp is mvp:
+            return idx
+        idx = self._new(ctx)
+        self._index[key] = idx
+        return idx
+
+    def _new(self, ctx) -> int:
         rec = DrawState(ctx.raster.snapshot(), ctx.matrices.mvp(), ctx.raster.viewport,
                         ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
                         bool(ctx.concave))
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1
+        if last is not None and same_geometry(last, rec):
+            self.geometry.append(self.geometry[-1])
+        else:
+            self.geometry.append(len(self.records))
         self.records.append(rec)
         self._last = rec
         return len(self.records) - 1
 
     def clear(self) -> None:
         self.records.clear()
+        self.geometry.clear()
+        self._index.clear()
         self._last = None
