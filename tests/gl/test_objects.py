@@ -295,7 +295,7 @@ def test_draw_arrays_copies_caller_arrays_before_deferring():
     import numpy as np
 
     from vgxsim.geometry.transform import orthographic
-    from vgxsim.state.context import Context
+    from vgxsim.pipeline.context import Context
 
     ctx = Context(8, 8)
     ctx.matrices.load_projection(orthographic(-0.5, 7.5, -0.5, 7.5, -1.0, 1.0))

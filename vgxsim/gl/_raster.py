@@ -16,8 +16,9 @@ from __future__ import annotations
 import math
 
 from vgxsim import GL
-from vgxsim.state.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
+from vgxsim.pipeline.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
 from vgxsim.state.planes import ZMAX, ZMIN
+from vgxsim.state.registers import StencilRegister
 
 from ._color import packed_colour
 from ._core import (
@@ -169,20 +170,20 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
             and 0 <= pass_ <= 5 and 0 <= zpass <= 5):
         # Fast path (plain ints, valid tokens): the checks below, inlined.
         regs = ctx.raster
-        regs.stencil = (True, ref & _U32, func, mask & _U32, fail, pass_, zpass)
+        regs.stencil = StencilRegister(True, ref & _U32, func, mask & _U32, fail, pass_, zpass)
         regs._snapshot = None
         return
     args = (enable, ref, func, mask, fail, pass_, zpass)
     on = as_int("stencil", args, "enable", enable) != 0
     if not on:
-        ctx.raster.set(stencil=(False,) + tuple(ctx.raster.stencil[1:]))
+        ctx.raster.set(stencil=ctx.raster.stencil._replace(enable=False))
         return
     r = _u32("stencil", args, "ref", ref)
     fn = check_token("stencil", args, "func", func, _CMP, "SF_")
     m = _u32("stencil", args, "mask", mask)
     ops = [check_token("stencil", args, what, v, _STOPS, "ST_")
            for what, v in (("fail", fail), ("pass", pass_), ("zpass", zpass))]
-    ctx.raster.set(stencil=(True, r, fn, m, ops[0], ops[1], ops[2]))
+    ctx.raster.set(stencil=StencilRegister(True, r, fn, m, ops[0], ops[1], ops[2]))
 
 
 @gl_function()

@@ -198,7 +198,7 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
                 pattern_offset: int = 0, private: bool = False) -> None:
     """Draw one primitive (or a mesh, with ``indices``) with ``state``.
 
-    See :meth:`vgxsim.state.context.Context.draw_arrays` for the parameters;
+    See :meth:`vgxsim.pipeline.context.Context.draw_arrays` for the parameters;
     ``private`` says the arrays are already private float64 (N, 4) copies.
     """
     if not private:

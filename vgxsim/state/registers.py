@@ -8,8 +8,21 @@ setter call -- following Mesa's softpipe pattern of one ``update_derived``.
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import NamedTuple
 
 from .raster import CULL_BACK, CULL_FRONT, RasterState
+
+
+class StencilRegister(NamedTuple):
+    """The arguments of the last stencil(3G) call, by name."""
+
+    enable: bool = False
+    ref: int = 0
+    func: int = 7  # SF_ALWAYS
+    mask: int = 0xFF
+    fail: int = 0  # ST_KEEP
+    pass_: int = 0  # stencil passed, z failed
+    zpass: int = 0
 
 
 class RasterRegisters:
@@ -22,7 +35,7 @@ class RasterRegisters:
         self.zbuffer = False
         self.zfunc = 3  # ZF_LEQUAL, the default (zfunction(3G))
         self.zwritemask = 0xFFFFFFFF
-        self.stencil = (False, 0, 7, 0xFF, 0, 0, 0)
+        self.stencil = StencilRegister()
         self.swritemask = 0xFF
         self.blend = (1, 0)  # BF_ONE, BF_ZERO
         self.logicop = 3  # LO_SRC

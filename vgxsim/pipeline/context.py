@@ -1,8 +1,12 @@
-"""The emulated VGX: one window's configuration, registers, matrices and batch.
+"""The emulated VGX: one window's state data, command stream and batch.
 
-The IRIS GL layer (:mod:`vgxsim.gl`) validates arguments and then stores into the
-registers held here; drawing goes geometry -> batch -> kernels -> planes.  Library
-users may also drive a :class:`Context` directly (``draw_arrays``, ``read_rgba``).
+The state itself is data in :mod:`vgxsim.state` (registers, planes, colour map,
+matrices); this pipeline-layer object holds one window's worth of it together with
+what drives drawing: the command stream the gl calls append to
+(:mod:`vgxsim.stream`), its decoding at a flush (:mod:`.decode`), the deferred
+geometry passes (:mod:`.draw`) and the batch the kernels render.  The IRIS GL layer
+(:mod:`vgxsim.gl`) validates arguments and then stores here; library users may also
+drive a :class:`Context` directly (``draw_arrays``, ``read_rgba``).
 """
 
 from __future__ import annotations
