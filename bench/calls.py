@@ -13,7 +13,9 @@ Reports, medians over rounds, all measured in this one run:
   the API: the whole frame, the raster part (time inside ``CommandBatch.flush``:
   binning and the band kernels) and the front end (the rest: the calls, recording,
   transform, lighting, clipping and set-up);
-* the makeobj replay of the frame's DrawObjects (one callobj per pass).
+* the makeobj replay of the frame's DrawObjects (one callobj per pass);
+* the same frame drawn by a PyOpenGL immediate-mode transliteration of the example
+  (bench/heidmann_gl.py) on llvmpipe with LP_NUM_THREADS=1 and 2.
 
 Timings on a shared machine are noisy; compare ratios measured side by side.
 """
@@ -319,6 +321,26 @@ def mesa_calls(rounds: int) -> dict[str, float] | None:
     return out
 
 
+def llvmpipe_frames() -> dict[str, float]:
+    """The PyOpenGL immediate-mode transliteration of the frame (bench/heidmann_gl.py)
+    on llvmpipe with 1 and 2 threads, each in its own process; ms."""
+    import subprocess
+
+    out = {}
+    for threads in (1, 2):
+        env = dict(os.environ, LP_NUM_THREADS=str(threads))
+        try:
+            res = subprocess.run([sys.executable, os.path.join(HERE, "heidmann_gl.py"),
+                                  str(threads)], env=env, capture_output=True, text=True,
+                                 timeout=600)
+            data = json.loads(res.stdout.strip().splitlines()[-1])
+        except (subprocess.SubprocessError, ValueError, IndexError):
+            continue
+        if "frame_s" in data:
+            out[f"llvmpipe_{threads}_thread_frame_ms"] = data["frame_s"] * 1e3
+    return out
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true")
@@ -333,6 +355,8 @@ def main(argv=None) -> int:
         m = "" if mesa is None or name not in mesa else f"{mesa[name]:12.0f}"
         print(f"{name:50s} {ns:10.0f} {m}")
     frame = heidmann_frame(3 if args.quick else 7)
+    if not args.no_mesa:
+        frame.update(llvmpipe_frames())
     print()
     for k, v in frame.items():
         print(f"heidmann 1280x1024 {k:30s} {v:10.2f}")

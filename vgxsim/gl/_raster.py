@@ -81,7 +81,10 @@ def zfunction(func: int) -> None:
 def zwritemask(mask: int) -> None:
     """Which z bits are written (zwritemask(3G)); 0 keeps z while still testing it."""
     ctx = current("zwritemask", (mask,))
-    ctx.raster.set(zwritemask=_u32("zwritemask", (mask,), "mask", mask))
+    regs = ctx.raster
+    regs.zwritemask = (mask if type(mask) is int else _u32("zwritemask", (mask,), "mask", mask)
+                       ) & _U32
+    regs._snapshot = None
 
 
 @gl_function()
@@ -164,11 +167,11 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
     manual allows stencil only where planes exist, and the kernels skip the test.
     """
     ctx = current("stencil", (enable, ref, func, mask, fail, pass_, zpass))
-    if (type(enable) is int and enable and type(ref) is int and type(func) is int
-            and type(mask) is int and type(fail) is int and type(pass_) is int
-            and type(zpass) is int and 0 <= func <= 7 and 0 <= fail <= 5
+    if (enable and isinstance(enable, int) and isinstance(ref, int) and isinstance(func, int)
+            and isinstance(mask, int) and isinstance(fail, int) and isinstance(pass_, int)
+            and isinstance(zpass, int) and 0 <= func <= 7 and 0 <= fail <= 5
             and 0 <= pass_ <= 5 and 0 <= zpass <= 5):
-        # Fast path (plain ints, valid tokens): the checks below, inlined.
+        # Fast path (ints or GL tokens, valid values): the checks below, inlined.
         regs = ctx.raster
         regs.stencil = StencilRegister(True, ref & _U32, func, mask & _U32, fail, pass_, zpass)
         regs._snapshot = None
@@ -216,8 +219,11 @@ def wmpack(mask: int) -> None:
     only, ``wmpack(0)`` no colour at all."""
     args = (mask,)
     ctx = current("wmpack", args)
-    _need_rgb(ctx, "wmpack", args)
-    ctx.raster.set(wmpack=_u32("wmpack", args, "mask", mask))
+    if not ctx.config.rgb:
+        _need_rgb(ctx, "wmpack", args)
+    regs = ctx.raster
+    regs.wmpack = (mask if type(mask) is int else _u32("wmpack", args, "mask", mask)) & _U32
+    regs._snapshot = None
 
 
 @gl_function()
