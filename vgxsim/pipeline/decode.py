@@ -9,8 +9,6 @@ one triangle list, fanned at once -- and handed to the geometry passes
 
 from __future__ import annotations
 
-from array import array
-
 import numpy as np
 
 from vgxsim.geometry import assembly
@@ -49,13 +47,12 @@ def drain(ctx) -> None:
     cut_ops, cut_fl = (s.open_ops, s.open_fl) if ctx.prim is not None else (nops, len(s.fl))
     if cut_ops <= 0:
         return
-    ops = np.frombuffer(s.ops, dtype=np.int64)
-    fl = np.frombuffer(s.fl, dtype=np.float64) if len(s.fl) else np.zeros(0)
+    ops = np.array(s.ops, dtype=np.int64)
+    fl = np.array(s.fl, dtype=np.float64) if s.fl else np.zeros(0)
     pos, col, nrm, sent, prims, swaps = decode_stream(ops, cut_ops, fl, s.attrs)
-    del ops, fl  # release the buffer exports before the arrays are resized
     if cut_ops == nops:
-        s.ops = array("q")
-        s.fl = array("d")
+        s.ops = []
+        s.fl = []
     else:
         s.ops = s.ops[cut_ops:]
         s.fl = s.fl[cut_fl:]
