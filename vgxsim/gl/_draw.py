@@ -42,6 +42,7 @@ import numpy as np
 
 from vgxsim.pipeline.decode import drain
 from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, V
+from vgxsim.stream.recorder import MAX_STREAM_OPS
 
 from ._core import (
     GLTypeError,
@@ -162,6 +163,8 @@ def begin(ctx, name: str, args: tuple, prim: str) -> None:
         raise GLUsageError(f"{describe(name, args)}: {OPENER[ctx.prim]}() is still open "
                            f"(call {CLOSER[ctx.prim]}() first)")
     st = ctx.stream
+    if len(st.ops) > MAX_STREAM_OPS:
+        drain(ctx)
     _restate(ctx, st)
     ctx.prim = prim
     st.open_ops = len(st.ops)
@@ -272,6 +275,8 @@ def _bgn(prim: str):
         if ctx is None or ctx.prim is not None:
             begin(current(name, args), name, args, prim)  # raises
         st = ctx.stream
+        if len(st.ops) > MAX_STREAM_OPS:
+            drain(ctx)
         _restate(ctx, st)
         ctx.prim = prim
         ops = st.ops

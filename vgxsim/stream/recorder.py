@@ -18,6 +18,9 @@ from .opcodes import BGN, CM, CRAW, CSKIP, END, SWAP, C, N, V
 
 #: Attribute vector the decoder starts from (see kernels/decode.py).
 ATTRS = 11
+#: A stream holding more opcodes than this is decoded at the next bgn* (a "full
+#: stream" flush: memory stays bounded for programs that never read back).
+MAX_STREAM_OPS = 1 << 20
 
 
 class CommandStream:
