@@ -33,11 +33,11 @@ def test_objects_draw_what_immediate_mode_draws(seed):
 def test_merged_fragment_states_switch_gives_identical_planes(seed, monkeypatch):
     """The fast path that sets up triangles of several fragment states in one
     geometry pass draws what one pass per state record draws."""
-    from vgxsim.pipeline import decode
+    from vgxsim.pipeline import draw
 
     calls = sequence(seed)
     a = render(calls)
-    monkeypatch.setattr(decode, "MERGE_FRAGMENT_STATES", False)
+    monkeypatch.setattr(draw, "MERGE_FRAGMENT_STATES", False)
     b = render(calls)
     for k in a:
         assert np.array_equal(a[k], b[k]), k

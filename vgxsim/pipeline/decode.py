@@ -27,12 +27,8 @@ from vgxsim.stream.opcodes import (
     TMESH,
 )
 
+from . import draw
 from .draw import defer_triangles, draw_arrays
-
-#: Fast-path switch: one geometry pass for consecutive triangle primitives whose
-#: records differ only in fragment state (stencil before every 1991 shadow face).
-#: False: one pass per record (tests/stream/test_random_streams.py compares).
-MERGE_FRAGMENT_STATES = True
 
 _TRIANGLES = np.zeros(16, bool)
 _TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
@@ -80,7 +76,7 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
         return
     kinds = prims[:, P_KIND]
     tri = _TRIANGLES[kinds]
-    if MERGE_FRAGMENT_STATES:
+    if draw.MERGE_FRAGMENT_STATES:
         geometry = np.asarray(ctx.states.geometry, np.int64)[prims[:, P_STATE]]
     else:
         geometry = prims[:, P_STATE]

@@ -20,6 +20,11 @@ from vgxsim.state.raster import FLAT, needs_colour
 
 from .records import DrawState, same_geometry, same_state
 
+#: Fast-path switch: one geometry pass for consecutive triangle primitives whose
+#: records differ only in fragment state (stencil before every 1991 shadow face).
+#: False: one pass per record (tests/stream/test_random_streams.py compares).
+MERGE_FRAGMENT_STATES = True
+
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
     "polygon", "tmesh", "qstrip", "line", "closedline", "point")
 
@@ -84,12 +89,6 @@ class PendingTriangles:
         self.n = 0
 
 
-def merge_fragment_states() -> bool:
-    from . import decode
-
-    return decode.MERGE_FRAGMENT_STATES
-
-
 def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
                     tris, prov, tri_states=None) -> None:
     """Queue one primitive's (or one group's) triangles on ``ctx``.
@@ -100,7 +99,7 @@ def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals
     pend = ctx.pending_triangles
     lms = override_of(state, lmcolor_set) is not None if normals is not None else False
     if pend is not None and not (pend.lmcolor_set == lms and (
-            same_state(pend.state, state) or (merge_fragment_states()
+            same_state(pend.state, state) or (MERGE_FRAGMENT_STATES
                                               and same_geometry(pend.state, state)))):
         commit_triangles(ctx)
         pend = None
