@@ -137,11 +137,15 @@ def lmbind(target: int, index: int) -> None:
     if idx and not ctx.lighting.is_defined(deftype, idx):
         raise GLValueError(f"{describe('lmbind', args)}: {what} {idx} is not defined "
                            f"(define it with lmdef({dname}, {idx}, ...))")
-    key = {int(GL.MATERIAL): "material", int(GL.BACKMATERIAL): "backmaterial",
-           int(GL.LMODEL): "lmodel"}[t]
-    ctx.bound[key] = idx
-    if t == int(GL.MATERIAL):
+    ctx.bound[_BOUND_KEY[t]] = idx
+    if t == _MATERIAL:
         ctx.lmcolor_set = False
+
+
+_MATERIAL = int(GL.MATERIAL)
+#: Which ``Context.bound`` entry each non-light lmbind target sets.
+_BOUND_KEY = {int(GL.MATERIAL): "material", int(GL.BACKMATERIAL): "backmaterial",
+              int(GL.LMODEL): "lmodel"}
 
 
 @gl_function()
