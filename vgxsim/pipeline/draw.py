@@ -18,7 +18,7 @@ from vgxsim.geometry.transform import apply
 from vgxsim.lighting import shade
 from vgxsim.state.raster import FLAT, needs_colour
 
-from .records import DrawState, same_geometry, same_state
+from .records import DrawState, same_projection, same_state
 
 #: Fast-path switch: one geometry pass for consecutive triangle primitives whose
 #: records differ only in fragment state (stencil before every 1991 shadow face).
@@ -76,35 +76,58 @@ def shade_vertices(state: DrawState, lmcolor_set: bool, obj, normals, colours, l
 class PendingTriangles:
     """Triangle draws queued for one combined geometry pass.
 
-    ``parts`` are (obj, cols, normals, lit, tris, prov, rasters): ``rasters`` is
-    None (the state's raster) or (list of RasterState, per-triangle index).
+    ``parts`` are (obj, rgba, tris, prov, rasters): vertex colours already lit;
+    ``rasters`` is None (the state's raster) or (list of RasterState, per-triangle
+    index).
     """
 
-    __slots__ = ("state", "lmcolor_set", "parts", "n")
+    __slots__ = ("state", "parts", "n")
 
-    def __init__(self, state: DrawState, lmcolor_set: bool):
+    def __init__(self, state: DrawState):
         self.state = state
-        self.lmcolor_set = lmcolor_set
         self.parts: list = []
         self.n = 0
 
 
+def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, tris, prov):
+    """Vertex colours of one part through the lighting equation, with two-sided
+    lighting's duplicated vertices: (obj, rgba, tris, prov)."""
+    if cols is None or normals is None or state.lighting is None:
+        return obj, cols, tris, prov
+    rgba = shade_vertices(state, lmcolor_set, obj, normals, cols, lit)
+    if state.lighting.lmodel.twoside:
+        # Two-sided lighting: back-facing triangles take colours lit from the back
+        # (flipped normal, BACKMATERIAL); vertices are duplicated so a vertex shared
+        # by a front and a back face gets both.
+        back_rgba = shade_vertices(state, lmcolor_set, obj, normals, cols, lit, back=True)
+        backs = _back_facing(apply(obj, state.mvp), tris)
+        n = obj.shape[0]
+        obj = np.concatenate([obj, obj])
+        rgba = np.concatenate([rgba, back_rgba])
+        tris = np.where(backs[:, None], tris + n, tris)
+        prov = np.where(backs, prov + n, prov)
+    return obj, rgba, tris, prov
+
+
 def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
                     tris, prov, tri_states=None) -> None:
-    """Queue one primitive's (or one group's) triangles on ``ctx``.
+    """Light one primitive's (or one group's) vertices and queue its triangles on
+    ``ctx`` for a geometry pass shared with the queued ones that project alike.
 
     ``tri_states`` (list of DrawState, per-triangle index) gives triangles of several
     records that :func:`~.records.same_geometry` joins; ``state`` is one of them.
+    Lighting is per vertex, so lighting each part on its own gives the colours
+    lighting them together would.
     """
+    obj, rgba, tris, prov = _lit_colours(state, lmcolor_set, obj, cols, normals, lit, tris,
+                                         prov)
     pend = ctx.pending_triangles
-    lms = override_of(state, lmcolor_set) is not None if normals is not None else False
-    if pend is not None and not (pend.lmcolor_set == lms and (
-            same_state(pend.state, state) or (MERGE_FRAGMENT_STATES
-                                              and same_geometry(pend.state, state)))):
+    if pend is not None and not (same_state(pend.state, state) or (
+            MERGE_FRAGMENT_STATES and same_projection(pend.state, state))):
         commit_triangles(ctx)
         pend = None
     if pend is None:
-        pend = ctx.pending_triangles = PendingTriangles(state, lms)
+        pend = ctx.pending_triangles = PendingTriangles(state)
     rasters = None
     if tri_states is not None:
         recs, per_tri = tri_states
@@ -112,7 +135,7 @@ def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals
     elif state.raster is not pend.state.raster:
         rasters = ([state.raster], np.zeros(tris.shape[0], np.int64))
     base = pend.n
-    pend.parts.append((obj, cols, normals, lit, tris + base, prov + base, rasters))
+    pend.parts.append((obj, rgba, tris + base, prov + base, rasters))
     pend.n = base + obj.shape[0]
 
 
@@ -121,15 +144,15 @@ def _triangle_states(pend: PendingTriangles):
     they all draw with the pending state's raster.  The list keeps one entry per
     primitive (entries may repeat), so a capture of the batch's input
     (vgxsim.reference.recorder) still sees one record per primitive."""
-    if all(p[6] is None for p in pend.parts):
+    if all(p[4] is None for p in pend.parts):
         return None
     states = [pend.state.raster]
     per = []
     for p in pend.parts:
-        if p[6] is None:
-            per.append(np.zeros(p[4].shape[0], np.int64))
+        if p[4] is None:
+            per.append(np.zeros(p[2].shape[0], np.int64))
             continue
-        rl, idx = p[6]
+        rl, idx = p[4]
         per.append(idx + len(states))
         states.extend(rl)
     return states, np.concatenate(per)
@@ -150,32 +173,9 @@ def commit_triangles(ctx) -> None:
         return parts[0][i] if len(parts) == 1 else np.concatenate([p[i] for p in parts])
 
     obj = joined(0)
-    tris = joined(4)
-    prov = joined(5)
-    rgba = None
-    if parts[0][1] is not None:
-        cols = joined(1)
-        lit_any = any(p[2] is not None for p in parts)
-        if state.lighting is not None and lit_any:
-            normals = np.concatenate([p[2] if p[2] is not None
-                                      else np.zeros((p[0].shape[0], 3)) for p in parts])
-            lit = np.concatenate([p[3] if p[3] is not None
-                                  else np.zeros(p[0].shape[0], bool) for p in parts])
-            rgba = shade_vertices(state, pend.lmcolor_set, obj, normals, cols, lit)
-            if state.lighting.lmodel.twoside:
-                # Two-sided lighting: back-facing triangles take colours lit from
-                # the back (flipped normal, BACKMATERIAL); vertices are duplicated
-                # so a vertex shared by a front and a back face gets both.
-                back_rgba = shade_vertices(state, pend.lmcolor_set, obj, normals, cols, lit,
-                                           back=True)
-                backs = _back_facing(apply(obj, state.mvp), tris)
-                n = obj.shape[0]
-                obj = np.concatenate([obj, obj])
-                rgba = np.concatenate([rgba, back_rgba])
-                tris = np.where(backs[:, None], tris + n, tris)
-                prov = np.where(backs, prov + n, prov)
-        else:
-            rgba = cols
+    rgba = joined(1) if parts[0][1] is not None else None
+    tris = joined(2)
+    prov = joined(3)
     flat = None if (rgba is None or rs.shademodel != FLAT) else rgba[prov]
     draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth), obj,
                    rgba, tris, flat, tri_states=tri_states)

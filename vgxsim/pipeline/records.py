@@ -104,6 +104,16 @@ def same_geometry(a: DrawState, b: DrawState) -> bool:
             and same_lighting(a.lighting, b.lighting))
 
 
+def same_projection(a: DrawState, b: DrawState) -> bool:
+    """Whether the lit vertices of two records go through one geometry pass alike:
+    the same transform, viewport, depth range, snapping and shading model, and both
+    with or both without vertex colour (lighting is applied before, per part)."""
+    ra, rb = a.raster, b.raster
+    return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
+            and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
+            and needs_colour(ra) == needs_colour(rb))
+
+
 class StateTable:
     """A window's interned DrawState records (indices of STATE ops).
 
