@@ -413,6 +413,38 @@ def _vertex_call(n: int, suffix: str):
         if tail:
             fl.extend(tail)
 
+    def call3(*args, **kwargs):
+        # call for v3f/v3d with the fast path inlined (the hottest call there is).
+        if session.recording is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = session.windows.get(session.current)
+        if ctx is None or ctx.prim is None:
+            _outside(name, args, current(name, args).prim, None)
+        seq = args
+        if len(args) == 1:
+            a0 = args[0]
+            if type(a0) is tuple or type(a0) is list:
+                seq = a0
+            elif type(a0) is np.ndarray and a0.ndim == 1:
+                seq = a0.tolist()
+        if len(seq) == 3:
+            x, y, z = seq
+            if not (type(x) is float and type(y) is float and type(z) is float
+                    and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
+                seq = coords(name, args, 3, False)
+        else:
+            seq = coords(name, args, 3, False)
+        st = ctx.stream
+        if (ctx.colour is not st.colour or ctx.normal is not st.normal
+                or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+            sync(ctx, st)
+        st.ops.append(V)
+        fl = st.fl
+        fl.extend(seq)
+        fl.append(1.0)
+
+    if n == 3 and not integer:
+        call = call3  # noqa: F811 - the specialised form replaces the generic one
     fast = _never if integer else _PLAIN[n]
     kind = "ints" if integer else "numbers"
     call.__name__ = call.__qualname__ = name
