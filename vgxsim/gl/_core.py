@@ -151,10 +151,10 @@ def check_token(name: str, args: tuple, what: str, v, allowed, family: str = "")
     return iv
 
 
-def _arity(func) -> tuple[int, float, tuple]:
+def _arity(func) -> tuple[int, int | float, tuple]:
     """(fewest, most positional arguments, annotation of each) of a gl call's body."""
     sig = inspect.signature(func)
-    lo, hi, kinds = 0, 0.0, []
+    lo, hi, kinds = 0, 0, []
     for p in sig.parameters.values():
         if p.kind is p.VAR_POSITIONAL:
             return lo, math.inf, tuple(kinds)

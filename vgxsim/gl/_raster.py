@@ -42,6 +42,7 @@ __all__ = [
 ]
 
 _U32 = 0xFFFFFFFF
+_new_tuple = tuple.__new__
 _CMP = range(8)  # ZF_*, SF_*, AF_*: NEVER 0 .. ALWAYS 7
 _STOPS = range(6)  # ST_KEEP 0 .. ST_INVERT 5
 _SHORT_MAX = 0x7FFF
@@ -173,7 +174,9 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
             and 0 <= pass_ <= 5 and 0 <= zpass <= 5):
         # Fast path (ints or GL tokens, valid values): the checks below, inlined.
         regs = ctx.raster
-        regs.stencil = StencilRegister(True, ref & _U32, func, mask & _U32, fail, pass_, zpass)
+        # tuple.__new__: the NamedTuple's own __new__ costs about 1 us.
+        regs.stencil = _new_tuple(StencilRegister,
+                                  (True, ref & _U32, func, mask & _U32, fail, pass_, zpass))
         regs._snapshot = None
         return
     args = (enable, ref, func, mask, fail, pass_, zpass)
