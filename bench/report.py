@@ -119,7 +119,7 @@ def mesa_rates() -> dict:
 FIRST_IMAGE = r"""
 import time, sys
 t0 = float(sys.argv[1])
-from vgxsim.state.context import Context
+from vgxsim.pipeline.context import Context
 from vgxsim.geometry.transform import orthographic
 ctx = Context(320, 256, stencil=8)
 ctx.matrices.load_projection(orthographic(-0.5, 319.5, -0.5, 255.5, -1, 1))

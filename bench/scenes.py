@@ -12,7 +12,7 @@ import numpy as np
 from vgxsim.batch import CommandBatch
 from vgxsim.geometry.transform import orthographic
 from vgxsim.kernels.options import jit
-from vgxsim.state.context import Context
+from vgxsim.pipeline.context import Context
 from vgxsim.state.planes import Framebuffer, PlaneConfig
 from vgxsim.state.raster import RasterState
 

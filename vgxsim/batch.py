@@ -15,7 +15,7 @@ import numpy as np
 from vgxsim import threads
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.render import bin_primitives, render_bands
-from vgxsim.kernels.setup import setup_triangles
+from vgxsim.kernels.setup import setup_triangles, setup_triangles_states
 from vgxsim.state.codes import (
     CLEAR_COLOUR,
     CLEAR_STENCIL,
@@ -241,6 +241,61 @@ class CommandBatch:
         self._maybe_flush()
         return self.ntris - start
 
+    def add_triangles_states(self, xf, yf, zw, col, tris, src, flat_col,
+                             states: list[RasterState], tri_state: np.ndarray) -> int:
+        """:meth:`add_triangles` for triangles of several raster states at once.
+
+        Parameters
+        ----------
+        states : list of RasterState
+            All alike except in what only the fragment stage reads (stencil, z and
+            blend functions, masks, cull): one shading model, one subpixel mode.
+        tri_state : ndarray, shape (Nt,), int64
+            Index into ``states`` of each triangle.
+        """
+        nt = tris.shape[0]
+        if nt == 0:
+            return 0
+        if type(self).add_triangles is not _ADD_TRIANGLES:
+            # add_triangles is wrapped (vgxsim.reference.recorder captures every
+            # triangle through it): feed it one state run at a time.
+            cuts = np.flatnonzero(np.diff(tri_state)) + 1
+            bounds = [0, *cuts.tolist(), nt]
+            return sum(self.add_triangles(xf, yf, zw, col, tris[a:b], src[a:b], flat_col,
+                                          states[int(tri_state[a])])
+                       for a, b in zip(bounds[:-1], bounds[1:], strict=True))
+        rs = states[0]
+        seen: dict[int, tuple[int, int]] = {}  # id -> (table index, cull): one look-up each
+        rows = []
+        for r in states:
+            hit = seen.get(id(r))
+            if hit is None:
+                hit = seen[id(r)] = (self.state_index(r), r.cull)
+            rows.append(hit)
+        table = np.array(rows, np.int64).reshape(-1, 2)
+        idx = np.ascontiguousarray(table[tri_state, 0])
+        culls = np.ascontiguousarray(table[tri_state, 1])
+        want_colour = col is not None or flat_col is not None
+        colv = col if col is not None else np.zeros((1, 4))
+        flatv = flat_col if flat_col is not None else np.zeros((1, 4))
+        flat = rs.shademodel == FLAT or col is None
+        end = self.ntris + nt
+        self.t_edge = _grow(self.t_edge, end)
+        self.t_box = _grow(self.t_box, end)
+        self.t_z = _grow(self.t_z, end)
+        self.t_zlim = _grow(self.t_zlim, end)
+        self.t_col = _grow(self.t_col, end)
+        self.t_state = _grow(self.t_state, end)
+        start = self.ntris
+        self.ntris = setup_triangles_states(
+            xf, yf, zw, colv, tris, src, flatv, idx, culls, flat, want_colour,
+            self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state, start)
+        refs = np.arange(start, self.ntris, dtype=np.int64)
+        self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
+                        self.t_box[start:self.ntris, 3])
+        self._maybe_flush()
+        return self.ntris - start
+
     def add_window_triangles(self, xw, yw, zw, col, tris, rs: RasterState, flat_col=None) -> int:
         """Queue triangles given in float IRIS window coordinates (library fast path).
 
@@ -354,3 +409,6 @@ class CommandBatch:
         self.counters += work.sum(axis=0)
         self.flushes += 1
         self._reset()
+
+
+_ADD_TRIANGLES = CommandBatch.add_triangles

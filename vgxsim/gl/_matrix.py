@@ -364,10 +364,12 @@ def _viewing_of(name: str, args: tuple, obj) -> tuple:
     ctx = current(name, args)
     as_int(name, args, "obj", obj)
     saved = copy.deepcopy(ctx.matrices.__dict__)
+    ctx.flush()  # what was drawn before is drawn
     hook = ctx.select_hook
     ctx.select_hook = lambda *a: None  # nothing the object draws reaches the planes
     try:
         callobj(obj)
+        ctx.flush()  # decode what the object queued while drawing is still off
         mvp = ctx.matrices.mvp().copy()
         vp = tuple(ctx.raster.viewport)
     finally:
