@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from vgxsim import threads
+from vgxsim import coldstart, threads
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.render import bin_primitives, render_bands
 from vgxsim.kernels.setup import setup_triangles, setup_triangles_states
@@ -105,6 +105,7 @@ class CommandBatch:
         self.flushes = 0
         self._allocate()
         self._reset()
+        coldstart.prepare(CommandBatch)  # first batch, empty cache: compile in parallel
 
     def reset_counters(self) -> None:
         """Zero the work counters."""
