@@ -27,7 +27,7 @@ _GEOMETRY = r"""
 import vgxsim.batch as B
 B.CommandBatch.flush = lambda self: B.CommandBatch._reset(self)  # geometry only
 from vgxsim.geometry.transform import orthographic
-from vgxsim.state.context import Context
+from vgxsim.pipeline.context import Context
 ctx = Context(32, 32, stencil=8)
 ctx.matrices.load_projection(orthographic(-0.5, 31.5, -0.5, 31.5, -1, 1))
 ctx.raster.set(zbuffer=True)
