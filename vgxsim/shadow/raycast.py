@@ -18,13 +18,15 @@ BVH, :mod:`vgxsim.kernels.bvh`):
 * the **visible triangle**: the nearest scene triangle with ``0 <= t <= 1`` (equal t:
   the lowest index), its object and world point;
 * per light, **lit**: the segment from the visible point P to the light meets no
-  caster triangle other than P's own, leaving out the first and last
-  ``eps * R`` world units of it (R: the scene's radius about the origin, at least 1;
-  about 1e-6 units for the default scene) -- the definition of a hard shadow
-  (article: "The volume of space behind the triangle ... is in shadow").  Point and
-  spot lights use their position (a spot's cone limits its light, not its shadow); a
-  directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a direction toward
-  the light) uses ``L = P + (4 R + 1) * unit(direction)``, beyond every caster;
+  caster triangle other than P's own, leaving out the first and last ``offset``
+  world units of it (:func:`segment_scales`: ``eps`` times the scene's size plus
+  1e-13 times its largest coordinate, so a scene moved far from the origin keeps
+  its shadows; 2e-6 units for the default scene) -- the definition of a hard
+  shadow (article: "The volume of space behind the triangle ... is in shadow").
+  Point and spot lights use their position (a spot's cone limits its light, not its
+  shadow); a directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a
+  direction toward the light) uses ``L = P + far * unit(direction)``, ``far``
+  reaching past every caster;
 * per light, **occluders**: how many distinct caster objects that segment crosses;
 * per light, **layers**: how many light-facing caster triangles it crosses (facing:
   ``N . (L - v0) > 0``, as :meth:`Polyhedron.facing`; ``N . direction > 0`` for
@@ -479,6 +481,36 @@ def nearest_hit(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray,
     return idx, t
 
 
+def segment_scales(tris4: np.ndarray, eye, eps: float) -> tuple[float, float]:
+    """Offset at both ends of a shadow segment, and the length of a directional one.
+
+    With D the diagonal of the scene's bounding box and M its largest |coordinate|:
+    ``offset = eps * D + 1e-13 * M`` (the first term keeps a receiver from
+    shadowing itself at any scale, the second stays above float64 rounding of
+    coordinates near M), and ``far = 2 (D + |eye - centre|) + 1``, longer than any
+    way from the eye or a scene point to a caster.
+
+    Parameters
+    ----------
+    tris4 : ndarray, shape (T, 3, 4), float64
+        Scene triangles (finite).
+    eye : array_like, shape (3,)
+    eps : float
+
+    Returns
+    -------
+    offset, far : float
+    """
+    pts = tris4[..., :3].reshape(-1, 3)
+    if len(pts) == 0:
+        return 0.0, 1.0
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    diag = float(np.linalg.norm(hi - lo))
+    big = float(np.abs(pts).max())
+    reach = float(np.linalg.norm(np.asarray(eye, np.float64) - 0.5 * (lo + hi)))
+    return float(eps) * diag + 1e-13 * big, 2.0 * (diag + reach) + 1.0
+
+
 def _light_facing(tris4: np.ndarray, light: np.ndarray) -> np.ndarray:
     """(T,) bool: ``N . (L - v0) > 0`` (``N . L`` for w = 0), N = (v1-v0) x (v2-v0)."""
     a, b, c = tris4[:, 0, :3], tris4[:, 1, :3], tris4[:, 2, :3]
@@ -516,7 +548,7 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
         ignored when ``faces`` is given.
     eps : float
         Shadow segments from the hit point P to the light count no blocker within
-        ``eps * R`` of either end (R: the scene's radius about the origin, >= 1).
+        ``offset`` of either end (:func:`segment_scales`).
     subpixel : bool, optional
         None: exact geometry.  False / True: vertices snapped as the rasterizer does
         under ``subpixel(FALSE)`` / ``subpixel(TRUE)``.
@@ -593,10 +625,7 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     layer_w = np.zeros((nl, len(tris4)), np.int64)
     for li in range(nl):
         layer_w[li] = caster & _light_facing(tris4, lights[li])
-    radius = float(np.sqrt(3.0) * max(1.0, np.abs(tris4[..., :3]).max(initial=0.0),
-                                       np.abs(np.asarray(cam.eye)).max()))
-    far = 4.0 * radius + 1.0
-    offset = float(eps) * radius
+    offset, far = segment_scales(tris4, cam.eye, eps)
     blocked = np.zeros((n, nl), bool)
     occl = np.zeros((n, nl), np.int64)
     layers = np.zeros((n, nl), np.int64)
