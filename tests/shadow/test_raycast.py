@@ -390,8 +390,8 @@ def test_rays_through_shared_edges_and_vertices_hit_exactly_one_triangle():
 
 def count_hits(tris, o, d, weights=None):
     """Kernel count of the triangles each ray meets at 0 <= t <= 1 (weights: 1)."""
-    from vgxsim.kernels.raycast import count_crossings, no_window
-    from vgxsim.shadow.raycast import scene_bvh
+    from vgxsim.kernels.raycast import count_crossings
+    from vgxsim.shadow.raycast import no_window, scene_bvh
 
     bvh = scene_bvh(homogeneous(tris))
     w = np.ones(len(tris), np.int64) if weights is None else np.asarray(weights, np.int64)

@@ -84,15 +84,9 @@ import numpy as np
 
 from vgxsim import threads as _threads
 from vgxsim.geometry.pipeline import GUARD_PIXELS, to_clip
-from vgxsim.kernels.bvh import BVH, build_bvh
+from vgxsim.kernels.bvh import BVH, build_arrays, split_references
 from vgxsim.kernels.clip import COORD_LIMIT, ONE, clip_triangles, project_snap, snap_window
-from vgxsim.kernels.raycast import (
-    Window,
-    closest_hits,
-    count_crossings,
-    no_window,
-    shadow_segments,
-)
+from vgxsim.kernels.raycast import Window, closest_hits, count_crossings, shadow_segments
 
 from .scene import Scene, shadow_faces
 
@@ -425,6 +419,33 @@ def run_bands(kernel, n: int, nthreads: int, *args) -> None:
                for r0, r1 in bands]
     for f in futures:
         f.result()
+
+
+def no_window() -> Window:
+    """A :data:`vgxsim.kernels.raycast.Window` that tests every triangle in 3-D."""
+    return Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
+                  np.zeros(0, np.bool_))
+
+
+def build_bvh(tris4: np.ndarray, usable: np.ndarray | None = None, *, leaf_size: int = 4,
+              sah: bool = True, max_extent: float = 0.0,
+              region: tuple[np.ndarray, np.ndarray] | None = None,
+              max_pieces: int = 64) -> BVH:
+    """A :data:`vgxsim.kernels.bvh.BVH` over the usable triangles.
+
+    ``max_extent`` > 0 cuts long triangles into pieces inside ``region`` (default:
+    everywhere), see :func:`vgxsim.kernels.bvh.split_references`; ``sah`` and
+    ``leaf_size`` as :func:`vgxsim.kernels.bvh.build_arrays`.
+    """
+    tris4 = np.ascontiguousarray(tris4, dtype=np.float64)
+    if usable is None:
+        usable = np.ones(tris4.shape[0], dtype=np.bool_)
+    if region is None:
+        region = (np.full(3, -np.inf), np.full(3, np.inf))
+    ref, lo, hi = split_references(tris4, np.ascontiguousarray(usable, dtype=np.bool_),
+                                   float(max_extent), np.asarray(region[0], np.float64),
+                                   np.asarray(region[1], np.float64), int(max_pieces))
+    return BVH(*build_arrays(tris4, ref, lo, hi, int(leaf_size), bool(sah)))
 
 
 def scene_bvh(tris4: np.ndarray, keep: np.ndarray | None = None, *, sah: bool = True,
