@@ -7,12 +7,26 @@ shadows are summed in accumulation-buffer units and reduced exactly
 (:mod:`.exact`).  Dask is optional (``pip install vgxsim[dask]``) and imported only
 when a :class:`DaskExecutor` is opened; :class:`LocalExecutor` runs the same tasks
 in-process.
+
+The names below are imported on first use, so ``vgxsim --help`` (which builds the
+parsers of :mod:`.command`) loads neither Numba nor Dask.
 """
 
-from .exact import ReductionError, reduce_partials, resolve
-from .executor import DaskExecutor, LocalExecutor, open_executor
-from .jobs import FarmTaskError, soft_shadows, spin
-from .tasks import TaskResult, Timing
+from __future__ import annotations
 
-__all__ = ["DaskExecutor", "FarmTaskError", "LocalExecutor", "ReductionError", "TaskResult",
-           "Timing", "open_executor", "reduce_partials", "resolve", "soft_shadows", "spin"]
+import importlib
+
+_WHERE = {
+    "DaskExecutor": "executor", "LocalExecutor": "executor", "open_executor": "executor",
+    "FarmTaskError": "jobs", "soft_shadows": "jobs", "spin": "jobs",
+    "ReductionError": "exact", "reduce_partials": "exact", "resolve": "exact",
+    "TaskResult": "tasks", "Timing": "tasks",
+    "load_config": "sweep", "run_sweep": "sweep",
+}
+__all__ = sorted(_WHERE)
+
+
+def __getattr__(name: str):
+    if name not in _WHERE:
+        raise AttributeError(f"module 'vgxsim.farm' has no attribute {name!r}")
+    return getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)

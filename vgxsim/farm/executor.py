@@ -81,7 +81,9 @@ class DaskExecutor:
     n_workers : int, optional
         LocalCluster workers (default: the machine's cores).
     processes : bool
-        LocalCluster workers as processes (True) or threads of this process.
+        LocalCluster workers as processes (True) or threads of this process (False:
+        quick to start, but IRIS GL has one current window per process, so thread
+        workers render one at a time -- the same pixels, no speed-up).
     threads : int
         Numba threads per task (1: one worker per core does the parallelism).
     retries : int

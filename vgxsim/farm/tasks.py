@@ -74,6 +74,11 @@ def worker_name() -> str:
 
 
 _compile_lock = threading.Lock()
+# IRIS GL keeps one current window per process (vgxsim.gl._core.session, like winset
+# in the 1990 library), so two renders in one process must not interleave: workers
+# that are threads of one process (LocalCluster(processes=False)) take turns here.
+# Process workers have one task thread each and never wait.
+_gl_lock = threading.Lock()
 
 
 def run_measured(index: int, fn: Callable, *args, threads: int = 1) -> TaskResult:
@@ -107,16 +112,17 @@ def run_measured(index: int, fn: Callable, *args, threads: int = 1) -> TaskResul
         with _compile_lock:
             spent[0] += seconds
 
-    t0 = time.perf_counter()
     value, error = None, None
-    with event.install_timer("numba:compile", on_compile):
+    with _gl_lock, event.install_timer("numba:compile", on_compile):
+        t0 = time.perf_counter()
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", api.ViewpointInShadowWarning)
                 value = fn(*args)
         except Exception:  # reported with its job's scene and settings by the caller
             error = traceback.format_exc()
-    timing = Timing(worker_name(), time.perf_counter() - t0, spent[0], os.getpid())
+        elapsed = time.perf_counter() - t0
+    timing = Timing(worker_name(), elapsed, spent[0], os.getpid())
     return TaskResult(index, value, timing, error)
 
 
@@ -201,7 +207,7 @@ def warm_up(settings_list: list[Mapping[str, Any]], threads: int = 1) -> float:
     numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
     t0 = time.perf_counter()
     seen = set()
-    with warnings.catch_warnings():
+    with _gl_lock, warnings.catch_warnings():
         warnings.simplefilter("ignore", api.ViewpointInShadowWarning)
         for s in settings_list:
             kw = {k: v for k, v in s.items() if k not in ("size", "soft", "on_soft_frame")}
