@@ -123,9 +123,16 @@ class DaskExecutor:
         return sorted(self.client.scheduler_info()["workers"])
 
     def put(self, obj: Any):
-        """Ship ``obj`` to every worker once (``client.scatter(..., broadcast=True)``);
-        tasks given the returned future receive the worker's local copy."""
-        return self.client.scatter(obj, broadcast=True, hash=False)
+        """Ship ``obj`` (a scene) for tasks: the returned future stands for it.
+
+        Not ``client.scatter``: a scattered key that only lost workers held cannot be
+        recovered, and the scheduler's active memory manager trims the replicas of a
+        broadcast (a worker killed mid-sweep then failed every task that needed the
+        scene: tests/farm/test_processes.py).  A task that returns ``obj`` is held by
+        one worker, copied once to each worker whose tasks need it, and re-run from
+        its spec (kept by the scheduler) if every holder dies."""
+        return self.client.submit(_keep, obj, pure=False,
+                                  key=f"{type(obj).__name__}-{uuid.uuid4().hex}")
 
     def warm_up(self, settings_list: Sequence[Mapping[str, Any]]) -> dict[str, float]:
         """One warm-up task pinned to each worker, run in the worker's executor thread
@@ -181,6 +188,11 @@ class DaskExecutor:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+def _keep(obj: Any) -> Any:
+    """The shipped object itself (see :meth:`DaskExecutor.put`)."""
+    return obj
 
 
 def open_executor(scheduler: str | None = None, local: bool = False,

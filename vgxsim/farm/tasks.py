@@ -216,6 +216,9 @@ def warm_up(settings_list: list[Mapping[str, Any]], threads: int = 1) -> float:
             if key in seen:
                 continue
             seen.add(key)
-            frame = api.render(None, size=(16, 12), soft=soft, **kw)
+            try:
+                frame = api.render(None, size=(16, 12), soft=soft, **kw)
+            except Exception:  # a bad setting: its own task reports it with its point
+                continue
             accumulate_frames([frame.colour])
     return time.perf_counter() - t0
