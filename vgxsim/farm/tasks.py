@@ -13,6 +13,7 @@ instead of a lost sweep.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import threading
 import time
@@ -81,6 +82,20 @@ _compile_lock = threading.Lock()
 _gl_lock = threading.Lock()
 
 
+@contextlib.contextmanager
+def numba_threads(n: int):
+    """Numba threads of the calling thread for the block (``numba.set_num_threads`` is
+    per thread), restored after, so an in-process run leaves its caller as it was."""
+    import numba
+
+    before = numba.get_num_threads()
+    numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))
+    try:
+        yield
+    finally:
+        numba.set_num_threads(before)
+
+
 def run_measured(index: int, fn: Callable, *args, threads: int = 1) -> TaskResult:
     """Run ``fn(*args)`` and time it where it runs.
 
@@ -102,10 +117,8 @@ def run_measured(index: int, fn: Callable, *args, threads: int = 1) -> TaskResul
         An exception inside ``fn`` becomes ``error`` (the sweep goes on); only a lost
         worker makes Dask re-run the task.
     """
-    import numba
     from numba.core import event
 
-    numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
     spent = [0.0]
 
     def on_compile(seconds: float) -> None:
@@ -113,7 +126,7 @@ def run_measured(index: int, fn: Callable, *args, threads: int = 1) -> TaskResul
             spent[0] += seconds
 
     value, error = None, None
-    with _gl_lock, event.install_timer("numba:compile", on_compile):
+    with _gl_lock, numba_threads(threads), event.install_timer("numba:compile", on_compile):
         t0 = time.perf_counter()
         try:
             with warnings.catch_warnings():
@@ -202,12 +215,9 @@ def warm_up(settings_list: list[Mapping[str, Any]], threads: int = 1) -> float:
     float
         Seconds spent.
     """
-    import numba
-
-    numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
     t0 = time.perf_counter()
     seen = set()
-    with _gl_lock, warnings.catch_warnings():
+    with _gl_lock, numba_threads(threads), warnings.catch_warnings():
         warnings.simplefilter("ignore", api.ViewpointInShadowWarning)
         for s in settings_list:
             kw = {k: v for k, v in s.items() if k not in ("size", "soft", "on_soft_frame")}
