@@ -53,9 +53,11 @@ def measure(ex, config, scene, soft: int, size, rounds: int) -> dict:
     frame = soft_shadows(ex, scene, soft, size=size)
     soft_s = time.perf_counter() - t0
     task_s = [r.result.timing.render_s for r in report.rows]
+    cpu_s = [r.result.timing.cpu_s for r in report.rows]
     return {"executor": ex.name, "points": len(report.rows),
             "sweep_wall_s": statistics.median(walls), "sweep_walls": walls,
             "task_s_median": statistics.median(task_s), "task_s_sum": sum(task_s),
+            "task_cpu_s_median": statistics.median(cpu_s),
             "soft_wall_s": soft_s,
             "digests": digests, "soft_colour": frame.colour, "soft_depth": frame.depth}
 
@@ -87,9 +89,9 @@ def main() -> None:
     one = next((r for r in runs if r["executor"].endswith("(1 processes)")), None)
     print(f"grid {base['points']} points at {w}x{h}, soft {ns.soft} samples, "
           f"median of {ns.rounds} rounds")
-    print("| executor | sweep wall s | points/s | vs 1 worker | median task s | task s summed "
-          "| soft wall s | identical |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| executor | sweep wall s | points/s | vs 1 worker | median task s | median task "
+          "CPU s | task s summed | soft wall s | identical |")
+    print("|---|---|---|---|---|---|---|---|---|")
     out = []
     for r in runs:
         same = (r["digests"] == base["digests"]
@@ -98,6 +100,7 @@ def main() -> None:
         speed = f"{one['sweep_wall_s'] / r['sweep_wall_s']:.2f}x" if one else "-"
         print(f"| {r['executor']} | {r['sweep_wall_s']:.2f} | "
               f"{r['points'] / r['sweep_wall_s']:.2f} | {speed} | {r['task_s_median']:.3f} | "
+              f"{r['task_cpu_s_median']:.3f} | "
               f"{r['task_s_sum']:.2f} | {r['soft_wall_s']:.2f} | "
               f"{same} |")
         out.append({k: v for k, v in r.items() if k not in ("soft_colour", "soft_depth")}

@@ -251,7 +251,8 @@ def run_sweep(config: SweepConfig, executor, keep: bool = False,
 
 def _columns(report: SweepReport) -> list[str]:
     return (["index", "scene", *report.config.axes] +
-            ["worker", "render_s", "compile_s", "colour_sha256", "depth_sha256", "error"])
+            ["worker", "render_s", "cpu_s", "compile_s", "colour_sha256", "depth_sha256",
+             "error"])
 
 
 def _cells(report: SweepReport, row: SweepRow) -> list[Any]:
@@ -260,7 +261,8 @@ def _cells(report: SweepReport, row: SweepRow) -> list[Any]:
     axes = ["x".join(map(str, v)) if isinstance(v, tuple) else v for v in axes]
     err = row.result.error.strip().splitlines()[-1] if row.result.error else ""
     return [row.result.index, row.point.scene, *axes, t.worker, f"{t.render_s:.4f}",
-            f"{t.compile_s:.4f}", row.colour_sha256[:16], row.depth_sha256[:16], err]
+            f"{t.cpu_s:.4f}", f"{t.compile_s:.4f}", row.colour_sha256[:16],
+            row.depth_sha256[:16], err]
 
 
 def write_csv(report: SweepReport, path: str | os.PathLike) -> None:

@@ -46,12 +46,16 @@ class Timing:
         Seconds of Numba compilation (or cache loading) inside the task.
     pid : int
         Process id of the worker.
+    cpu_s : float
+        CPU seconds of the worker's process during the task: beside ``render_s`` it
+        tells a slow task from one that waited for a core shared with other jobs.
     """
 
     worker: str
     render_s: float
     compile_s: float
     pid: int
+    cpu_s: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -127,15 +131,15 @@ def run_measured(index: int, fn: Callable, *args, threads: int = 1) -> TaskResul
 
     value, error = None, None
     with _gl_lock, numba_threads(threads), event.install_timer("numba:compile", on_compile):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", api.ViewpointInShadowWarning)
                 value = fn(*args)
         except Exception:  # reported with its job's scene and settings by the caller
             error = traceback.format_exc()
-        elapsed = time.perf_counter() - t0
-    timing = Timing(worker_name(), elapsed, spent[0], os.getpid())
+        elapsed, cpu = time.perf_counter() - t0, time.process_time() - c0
+    timing = Timing(worker_name(), elapsed, spent[0], os.getpid(), cpu)
     return TaskResult(index, value, timing, error)
 
 
