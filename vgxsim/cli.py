@@ -10,6 +10,7 @@
                   [--edges all|silhouette] [--overwrite]
     vgxsim shadows [SCENE] [-o OUT] [options]    (see vgxsim.shadow.command)
     vgxsim convert MESH OUT.glo [-f]
+    vgxsim sweep CONFIG.toml [--scheduler ADDRESS | --local]   (see vgxsim.farm.command)
 
 ``run`` executes an IRIS GL Python program headless (see :mod:`vgxsim.runner`);
 everything after ``--`` is passed to the program.  ``render`` draws Heidmann's 1991
@@ -110,6 +111,9 @@ def build_parser() -> argparse.ArgumentParser:
     from vgxsim.shadow.command import add_parsers  # shadows, convert
 
     add_parsers(sub, _size, _positive_int)
+    from vgxsim.farm.command import add_sweep_parser
+
+    add_sweep_parser(sub)
     return p
 
 
@@ -204,6 +208,10 @@ def main(argv: list[str] | None = None) -> int:
         if program_args:
             parser.error(f"{ns.command} takes no arguments after --")
         return run_shadows(ns) if ns.command == "shadows" else run_convert(ns)
+    if ns.command == "sweep":
+        from vgxsim.farm.command import run_sweep_command
+
+        return run_sweep_command(ns)
     parser.print_help(sys.stderr)
     return 2
 

@@ -388,7 +388,7 @@ def write_animation(path: str | os.PathLike, frames: Sequence[np.ndarray],
     from vgxsim.sinks.frames import VideoSink
 
     with atomic_path(path) as tmp:
-        sink = VideoSink(tmp, fps=fps)
+        sink = VideoSink(tmp, fps=fps, overwrite=True)  # tmp: atomic_path's own new file
         for img in frames:
             sink.write(np.ascontiguousarray(img[::-1]))  # sinks take framebuffer order
         sink.close()

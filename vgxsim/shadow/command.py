@@ -8,12 +8,15 @@ images from a shell script" (README) are what remains here, headless::
                    [--light N] [--soft [N|figure6]] [--soft-max N] [--seed N]
                    [--rotate AZ,EL] [--translate X,Y] [--dolly D] [--spin N] [--fps F]
                    [--subpixel on|off] [--edges silhouette|all] [--signs screen|article]
+                   [--scheduler ADDRESS | --local] [--workers N]
     vgxsim convert MESH OUT [-f] [--normals none|face|vertex]
 
 SCENE is a ``.scn`` file or the name of a shipped scene (cubes, balls,
 textured_floor, dense, teapot); without it, the three cubes.  Errors in a scene or
 model name the file and line and exit with status 1; nothing is written then.
-Outputs are written atomically.
+Outputs are written atomically.  ``--spin`` and ``--soft`` run as Dask tasks
+(:mod:`vgxsim.farm`: an embedded LocalCluster, or ``--scheduler``; the same pixels);
+``--local`` keeps them in this process, with the soft shadows' intermediate images.
 """
 
 from __future__ import annotations
@@ -106,6 +109,9 @@ def add_parsers(sub, size_type, positive_int) -> None:
                          "or the article's 3-D test (article)")
     sh.add_argument("--no-cache", action="store_true",
                     help="rebuild model adjacency instead of using the cache")
+    from vgxsim.farm.command import add_scheduler_options
+
+    add_scheduler_options(sh)  # where --spin frames and --soft samples run
 
     cv = sub.add_parser(
         "convert", help="convert a mesh (OBJ, STL, PLY, OFF, GLB, .glo) to .glo or a cache",
@@ -169,15 +175,21 @@ def run_shadows(ns: argparse.Namespace) -> int:
                   "hard", file=sys.stderr)
     kw = dict(mode=ns.mode, size=ns.size, light=ns.light, seed=ns.seed, edges=ns.edges,
               subpixel=ns.subpixel, signs=ns.signs)
+    farmed = bool(ns.spin or soft) and not ns.local
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", api.ViewpointInShadowWarning)
+            if farmed:  # vgxsim.farm: the same arrays, computed as Dask tasks
+                from vgxsim.farm.command import run_farmed_shadows
+
+                result = run_farmed_shadows(ns, scene, soft, kw)
             if ns.spin:
-                frames = api.render_spin(scene, ns.spin, soft=soft, **kw)
+                frames = result if farmed else api.render_spin(scene, ns.spin, soft=soft,
+                                                               **kw)
                 api.write_animation(out, frames, ns.fps)
                 what = f"{ns.spin} frames"
             else:
-                bar = _progress(soft) if soft else None
+                bar = _progress(soft) if soft and not farmed else None
                 checkpoints = {1 << k for k in range(16)}
 
                 def intermediate(n: int, colour) -> None:
@@ -187,8 +199,8 @@ def run_shadows(ns: argparse.Namespace) -> int:
                         api.write_image(out, colour)
 
                 try:
-                    frame = api.render(scene, soft=soft,
-                                       on_soft_frame=intermediate if soft else None, **kw)
+                    frame = result if farmed else api.render(
+                        scene, soft=soft, on_soft_frame=intermediate if soft else None, **kw)
                 finally:
                     if bar is not None:
                         bar.close()
