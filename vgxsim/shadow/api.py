@@ -364,10 +364,11 @@ def render_spin(scene: Scene | None, frames: int, **kw) -> list[np.ndarray]:
 
 
 def write_image(path: str | os.PathLike, colour: np.ndarray) -> None:
-    """Write an (H, W, 4) or (H, W, 3) uint8 image, top row first, atomically, as RGB
-    (the format follows the suffix: .png, .jpg, .rgb ...)."""
-    from vgxsim.formats.atomic import atomic_path
-
+    """Write an (H, W, 4) or (H, W, 3) uint8 image, top row first, atomically, as RGB;
+    the format follows the suffix (.png, .jpg/.jpeg, .tif/.tiff through
+    :func:`vgxsim.sinks.images.write_image`; .rgb/.sgi as an SGI image), any other
+    suffix is refused.  An existing file is replaced (the command line checks
+    ``--overwrite`` before it renders)."""
     rgb = np.ascontiguousarray(np.asarray(colour, np.uint8)[..., :3])
     path = os.fspath(path)
     if path.lower().endswith((".rgb", ".sgi")):
@@ -375,16 +376,15 @@ def write_image(path: str | os.PathLike, colour: np.ndarray) -> None:
 
         write_rgb(path, rgb)
         return
-    import imageio.v3 as iio
+    from vgxsim.sinks.images import write_image as write_any
 
-    with atomic_path(path) as tmp:
-        iio.imwrite(tmp, rgb)
+    write_any(path, rgb, overwrite=True)
 
 
 def write_animation(path: str | os.PathLike, frames: Sequence[np.ndarray],
                     fps: float = 15.0) -> None:
     """Write frames (each (H, W, 4) uint8, top row first) as .gif or .mp4, atomically."""
-    from vgxsim.formats.atomic import atomic_path
+    from vgxsim.sinks.atomic import atomic_path
     from vgxsim.sinks.frames import VideoSink
 
     with atomic_path(path) as tmp:

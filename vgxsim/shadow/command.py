@@ -109,6 +109,9 @@ def add_parsers(sub, size_type, positive_int) -> None:
                          "or the article's 3-D test (article)")
     sh.add_argument("--no-cache", action="store_true",
                     help="rebuild model adjacency instead of using the cache")
+    sh.add_argument("--overwrite", action="store_true",
+                    help="replace an existing output file (without it, one is refused "
+                         "before anything is drawn)")
     from vgxsim.farm.command import add_scheduler_options
 
     add_scheduler_options(sh)  # where --spin frames and --soft samples run
@@ -125,6 +128,8 @@ def add_parsers(sub, size_type, positive_int) -> None:
     cv.add_argument("--normals", choices=("none", "face", "vertex"), default="none",
                     help="normals to store in the .glo (default none: one per polygon, "
                          "computed when drawn)")
+    cv.add_argument("--overwrite", action="store_true",
+                    help="replace an existing OUT (without it, one is refused)")
 
 
 def _progress(total: int):
@@ -154,6 +159,10 @@ def run_shadows(ns: argparse.Namespace) -> int:
     folder = os.path.dirname(os.path.abspath(out))
     if not os.path.isdir(folder):
         print(f"{prog}: the output folder {folder} does not exist", file=sys.stderr)
+        return 2
+    problem = _output_problem(out, ns.overwrite)
+    if problem:
+        print(f"{prog}: {problem}", file=sys.stderr)
         return 2
     try:
         scene = api.load_scene(ns.scene, use_cache=not ns.no_cache)
@@ -219,11 +228,29 @@ def run_shadows(ns: argparse.Namespace) -> int:
     return 0
 
 
+def _output_problem(path: str, overwrite: bool) -> str | None:
+    """Why ``path`` cannot be written (the rule of every vgxsim output: an existing
+    file is replaced only with --overwrite; the target is tried before any work),
+    or None."""
+    from vgxsim.sinks import SinkError
+    from vgxsim.sinks.images import check_writable_file
+
+    try:
+        check_writable_file(path, overwrite)
+    except SinkError as exc:
+        return str(exc).replace("(overwrite=True) ", "")
+    return None
+
+
 def run_convert(ns: argparse.Namespace) -> int:
     """Carry out ``vgxsim convert``; returns the exit status."""
     from vgxsim.formats import FormatError
     from vgxsim.formats.convert import convert
 
+    problem = _output_problem(ns.out, ns.overwrite)
+    if problem:
+        print(f"vgxsim convert: {problem}", file=sys.stderr)
+        return 2
     try:
         model = convert(ns.mesh, ns.out, flip=ns.flip, normals=ns.normals)
     except FormatError as exc:
