@@ -20,10 +20,50 @@ from vgxsim.backends.opengl.surface import Surface
 from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, MAX_PRIMITIVES, CommandBatch
 from vgxsim.kernels.clip import ONE
 from vgxsim.state.planes import ZMAX, ZMIN
-from vgxsim.state.raster import FLAT, RasterState
+from vgxsim.state.raster import BF_MIN_SA_MDA, FLAT, LO_SRC, OP_INCR, RasterState
 
 Z_SPAN = float(ZMAX - ZMIN)
-_TRIANGLES, _POINTS, _CLEAR = range(3)
+_TRIANGLES, _POINTS, _CLEAR, _CPU = range(4)
+
+#: Test switch: with False, states OpenGL cannot express are drawn by OpenGL anyway
+#: (approximately) instead of by the software batch.
+EMULATE_INEXPRESSIBLE = True
+
+
+def _partial(value: int, width: int) -> bool:
+    return value not in (0, (1 << width) - 1)
+
+
+def inexpressible(rs: RasterState, stencil_planes: int, clear: bool = False) -> list[str]:
+    """What of ``rs`` OpenGL 1.x cannot draw exactly (empty: OpenGL draws it).
+
+    Parameters
+    ----------
+    rs : RasterState
+    stencil_planes : int
+        stensize of the window.
+    clear : bool
+        For a clear (masks matter whatever the z-buffer and stencil modes are).
+
+    Returns
+    -------
+    list of str
+        Reasons; a primitive with any is drawn by the software batch instead.
+    """
+    out = []
+    colour = bool(rs.draw_front or rs.draw_back)
+    if colour and any(_partial((rs.wmpack >> (8 * i)) & 0xFF, 8) for i in range(4)):
+        # glColorMask is per component (wmpack(3G), writemask(3G) are per bit).
+        out.append("partial colour write mask")
+    if (clear or rs.zbuffer) and _partial(rs.zwritemask & 0xFFFFFF, 24):
+        out.append("partial zwritemask")  # glDepthMask is all or nothing
+    if not clear and rs.blend_df == BF_MIN_SA_MDA and rs.logicop == LO_SRC:
+        out.append("BF_MIN_SA_MDA destination factor")  # GL has it as a source factor only
+    if (not clear and rs.stencil and 0 < stencil_planes < 8
+            and OP_INCR in (rs.sfail, rs.spass, rs.szpass)):
+        # IRIS clamps ST_INCR at 2**stensize - 1; GL's 8-bit buffer at 255.
+        out.append("ST_INCR with fewer than 8 stencil planes")
+    return out
 
 
 def gl_window_xy(fixed: np.ndarray) -> np.ndarray:
@@ -38,6 +78,38 @@ def gl_depth(zw: np.ndarray) -> np.ndarray:
     return (np.asarray(zw, np.float64) - ZMIN) / Z_SPAN
 
 
+def unorm8(rgba: np.ndarray) -> np.ndarray:
+    """Vertex colours as packed 0xAABBGGRR words, each component ``floor(c * 255 +
+    0.5)`` as the software batch rounds (docs/numeric_model.md): a constant colour
+    is then exact, where llvmpipe's own float-to-byte conversion rounds some
+    halves down (0.3 gives 76, not 77)."""
+    q = np.clip(np.floor(np.asarray(rgba, np.float64) * 255.0 + 0.5), 0, 255).astype(np.uint32)
+    return q[..., 0] | (q[..., 1] << 8) | (q[..., 2] << 16) | (q[..., 3] << 24)
+
+
+def gouraud_colours(corner_rgba: np.ndarray) -> np.ndarray:
+    """Float vertex colours, three per triangle, for GL's linear interpolation.
+
+    Unquantized colours follow the software batch's plane equations (it
+    interpolates ``c * 255`` and rounds per pixel); a triangle whose three corners
+    share one colour gets that colour as an exact ``k / 255``, which llvmpipe then
+    writes as ``k`` (its own rounding of 0.3 gives 76, not ``floor(76.5 + 0.5)``).
+
+    Parameters
+    ----------
+    corner_rgba : ndarray, shape (3 * T, 4), float64
+
+    Returns
+    -------
+    ndarray, shape (3 * T, 4), float32
+    """
+    tri = corner_rgba.reshape(-1, 3, 4)
+    constant = (tri == tri[:, :1]).all(axis=(1, 2))
+    q = np.clip(np.floor(tri * 255.0 + 0.5), 0, 255) / 255.0
+    out = np.where(constant[:, None, None], q, tri)
+    return out.reshape(-1, 4).astype(np.float32)
+
+
 class OpenGLBatch(CommandBatch):
     """A :class:`~vgxsim.batch.CommandBatch` whose flush draws with OpenGL.
 
@@ -50,6 +122,9 @@ class OpenGLBatch(CommandBatch):
     def __init__(self, framebuffer):
         super().__init__(framebuffer)
         self.surface: Surface | None = None
+        # The software batch on the same planes draws what OpenGL cannot express.
+        self.software = CommandBatch(framebuffer)
+        self._routes: dict = {}
 
     def _allocate(self) -> None:
         """No kernel arrays: the queue is a list of draw calls."""
@@ -61,6 +136,15 @@ class OpenGLBatch(CommandBatch):
         self.nfrags = 0
         self.nruns = 0
         self.nclears = 0
+
+    def _cpu_route(self, rs: RasterState, clear: bool = False) -> bool:
+        if not EMULATE_INEXPRESSIBLE:
+            return False
+        hit = self._routes.get((rs, clear))
+        if hit is None:
+            hit = self._routes[(rs, clear)] = bool(
+                inexpressible(rs, self.fb.config.stencil, clear))
+        return hit
 
     def _queue(self, op: tuple, count: int) -> None:
         self._ops.append(op)
@@ -82,6 +166,11 @@ class OpenGLBatch(CommandBatch):
         nt = tris.shape[0]
         if nt == 0:
             return 0
+        if self._cpu_route(rs):
+            self.ntris += nt
+            self._queue((_CPU, rs, "add_triangles", (xf, yf, zw, col, tris, src, flat_col,
+                                                     rs)), nt)
+            return nt
         flat = rs.shademodel == FLAT or col is None
         corners = tris.reshape(-1)
         pos = np.empty((3 * nt, 3), np.float32)
@@ -91,9 +180,9 @@ class OpenGLBatch(CommandBatch):
         colours = None
         if flat and flat_col is not None:
             per_tri = np.asarray(flat_col, np.float64)[np.asarray(src, np.int64)]
-            colours = np.repeat(per_tri, 3, axis=0).astype(np.float32)
+            colours = np.repeat(unorm8(per_tri), 3, axis=0)
         elif col is not None:
-            colours = np.asarray(col, np.float32)[corners]
+            colours = gouraud_colours(np.asarray(col, np.float64)[corners])
         self.ntris += nt
         self._queue((_TRIANGLES, rs, pos, colours), nt)
         return nt
@@ -109,6 +198,9 @@ class OpenGLBatch(CommandBatch):
         """
         n = xy.shape[0]
         if n == 0:
+            return
+        if self._cpu_route(rs):
+            self._queue((_CPU, rs, "add_fragments", (xy, z, rgba, rs)), 1)
             return
         xy = np.asarray(xy)
         pos = np.empty((n, 3), np.float32)
@@ -128,6 +220,9 @@ class OpenGLBatch(CommandBatch):
             planes &= ~CLEAR_STENCIL
         if planes == 0:
             return
+        if self._cpu_route(rs, clear=True):
+            self._queue((_CPU, rs, "add_clear", (planes, colour, z, stencil, rs)), 1)
+            return
         names = {name for bit, name in ((CLEAR_COLOUR, "color"), (CLEAR_Z, "z"),
                                         (CLEAR_STENCIL, "stencil")) if planes & bit}
         values = {"color": int(colour) & 0xFFFFFFFF, "z": int(z), "stencil": int(stencil)}
@@ -135,27 +230,42 @@ class OpenGLBatch(CommandBatch):
         self._queue((_CLEAR, rs, names, values), 1)
 
     def flush(self) -> None:
-        """Draw everything queued with OpenGL, in order, and read the planes back."""
+        """Draw everything queued, in order, and read the planes back: runs of
+        OpenGL draws between an upload and a readback, and the primitives OpenGL
+        cannot express drawn by the software batch on the planes in between."""
         if not self._ops:
             return
-        if self.surface is None:
-            self.surface = Surface(self.fb)
-        gl = self.surface
         from vgxsim.reference.mesa import _import_gl
 
         GL, _ = _import_gl()
-        gl.begin()
+        gl = None
         front = back = False
+        single = self.fb.back is None
         for op in self._ops:
             kind, rs = op[0], op[1]
+            if kind == _CPU:
+                if gl is not None:
+                    gl.end(front, back, True)
+                    gl = None
+                getattr(CommandBatch, op[2])(self.software, *op[3])
+                continue
+            if gl is None:
+                self.software.flush()
+                if self.surface is None:
+                    self.surface = Surface(self.fb)
+                gl = self.surface
+                gl.begin()
+                front = back = False
             gl.apply(rs)
-            front = front or bool(rs.draw_front) or self.fb.back is None
+            front = front or bool(rs.draw_front) or single
             back = back or bool(rs.draw_back)
             if kind == _CLEAR:
                 gl._clear(op[2], op[3], rs)
             else:
                 gl.draw(GL.GL_TRIANGLES if kind == _TRIANGLES else GL.GL_POINTS, op[2], op[3])
-        gl.end(front, back, True)
+        if gl is not None:
+            gl.end(front, back, True)
+        self.software.flush()
         self.flushes += 1
         self._reset()
 

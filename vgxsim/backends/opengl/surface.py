@@ -74,7 +74,7 @@ class Surface(mesa.MesaPeer):
                                "(pip install 'vgxsim[opengl]'; apt install libosmesa6)")
         _pick_threads()
         cfg = framebuffer.config
-        super().__init__(cfg.width, cfg.height, stencil_bits=8, depth_bits=24)
+        super().__init__(cfg.width, cfg.height, stencil_bits=8, depth_bits=24, guard=1 << 16)
         self.fb = framebuffer
         self._make_fbo()
         if framebuffer.z is None:
