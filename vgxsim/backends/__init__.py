@@ -24,13 +24,20 @@ class BackendError(RuntimeError):
     """A backend was asked for that does not exist or cannot start here."""
 
 
-def set_backend(name: str | None) -> None:
+def set_backend(name: str | None) -> str | None:
     """Use backend ``name`` for windows configured from now on (None: follow
-    ``VGXSIM_BACKEND``, else software)."""
+    ``VGXSIM_BACKEND``, else software).
+
+    Returns
+    -------
+    str or None
+        The previous setting (to restore it with another call).
+    """
     global _override
     if name is not None and name not in BACKENDS:
         raise BackendError(f"unknown backend {name!r}; choose one of {', '.join(BACKENDS)}")
-    _override = name
+    previous, _override = _override, name
+    return previous
 
 
 def get_backend() -> str:

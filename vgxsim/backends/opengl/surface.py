@@ -19,8 +19,10 @@ its reasons).  What a backend needs beyond the peer is here:
 
 from __future__ import annotations
 
+import atexit
 import ctypes
 import os
+import weakref
 
 import numpy as np
 
@@ -28,6 +30,16 @@ from vgxsim import threads
 from vgxsim.reference import mesa
 from vgxsim.state.planes import ZMIN, Framebuffer
 from vgxsim.state.raster import RasterState
+
+_live: weakref.WeakSet = weakref.WeakSet()
+
+
+@atexit.register
+def _close_all() -> None:
+    """Destroy the contexts before the interpreter tears PyOpenGL down (a context
+    destroyed from __del__ at shutdown makes PyOpenGL print its handler table)."""
+    for surface in list(_live):
+        surface.close()
 
 
 def available() -> bool:
@@ -82,6 +94,7 @@ class Surface(mesa.MesaPeer):
         if framebuffer.stencil is None:
             self.stencil_bits = 0
         self._buffers = None
+        _live.add(self)
 
     def _make_fbo(self) -> None:
         GL, _ = mesa._import_gl()
