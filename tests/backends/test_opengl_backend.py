@@ -174,3 +174,40 @@ def test_software_backend_is_the_default(monkeypatch):
 
     batch = backends.make_batch(Framebuffer(PlaneConfig(4, 4)))
     assert type(batch) is CommandBatch
+
+
+def _frames_with_swaps_and_cpu_writes(make):
+    """Three frames of flat squares with swapbuffers between them and a CPU write
+    into the planes (as acbuf or lrectwrite would) before the last: the planes
+    after each frame."""
+    from vgxsim.gl import swapbuffers
+
+    ctx = make(W, H, double=True)
+    out = []
+    zbuffer(GL.TRUE)
+    for frame, colour in enumerate((0xFF0000FF, 0xFF00FF00, 0xFFFF0000)):
+        if frame == 2:
+            ctx.flush()
+            ctx.fb.back[0, :] = 0xFF123456
+            ctx.fb.z[0, :] = -5
+        cpack(colour)
+        ctx.draw_arrays("polygon", square(frame, frame, frame + 4, frame + 4, z=0.1 * frame))
+        swapbuffers()
+        out.append([p.copy() for p in (ctx.fb.front, ctx.fb.back, ctx.fb.z, ctx.fb.stencil)])
+    return out
+
+
+@pytest.mark.parametrize("changed_only", [True, False])
+def test_upload_switch_keeps_planes_equal_to_software(gl_win, monkeypatch, changed_only):
+    from vgxsim.backends.opengl import surface
+
+    monkeypatch.setattr(surface, "UPLOAD_CHANGED_ONLY", changed_only)
+    got = _frames_with_swaps_and_cpu_writes(gl_win)
+    backends.set_backend("software")
+    want = _frames_with_swaps_and_cpu_writes(gl_win)
+    for g, s in zip(got, want, strict=True):
+        for i, (a, b) in enumerate(zip(g, s, strict=True)):
+            if i == 2:  # z: float32 vertex depth, within 1 unit (D2, docs/opengl_backend.md)
+                assert np.abs(a.astype(np.int64) - b).max() <= 1
+            else:
+                assert np.array_equal(a, b)

@@ -42,6 +42,15 @@ def _close_all() -> None:
         surface.close()
 
 
+#: Fast-path switch: upload only the planes that differ from what GL holds (False:
+#: upload every plane before every batch).
+UPLOAD_CHANGED_ONLY = True
+
+
+def _same(plane, known) -> bool:
+    return plane is not None and known is not None and np.array_equal(plane, known)
+
+
 def available() -> bool:
     """Whether PyOpenGL and libOSMesa can be used in this process."""
     return mesa.mesa_available()
@@ -94,6 +103,7 @@ class Surface(mesa.MesaPeer):
         if framebuffer.stencil is None:
             self.stencil_bits = 0
         self._buffers = None
+        self._known: list = [None, None, None, None]  # front, back, z, stencil in GL
         _live.add(self)
 
     def _make_fbo(self) -> None:
@@ -127,7 +137,14 @@ class Surface(mesa.MesaPeer):
         GL.glDisable(GL.GL_POINT_SMOOTH)
 
     def begin(self) -> None:
-        """Make the context current and upload the planes (before drawing a batch)."""
+        """Make the context current and upload the planes the CPU changed since
+        the last readback (before drawing a batch).
+
+        ``_known`` holds what each GL attachment is known to contain: the arrays
+        read back last, or uploaded.  A plane equal to it is not uploaded again;
+        after swapbuffers (front and back exchanged) the two colour textures
+        exchange their attachments instead of being uploaded.
+        """
         GL, _ = mesa._import_gl()
         self._make_current()
         GL.glBindFramebuffer(GL.GL_FRAMEBUFFER, self._fbo)
@@ -136,16 +153,33 @@ class Surface(mesa.MesaPeer):
         _tex, sub_image, _read = _raw()
         fb = self.fb
         w, h = self.width, self.height
-        colours = (fb.front, fb.back if fb.back is not None else fb.front)
-        for t, plane in zip(self._tex[:2], colours, strict=True):
-            GL.glBindTexture(GL.GL_TEXTURE_2D, t)
-            data = np.ascontiguousarray(plane)
+        known = self._known
+        if (fb.back is not None and known[0] is not None and known[1] is not None
+                and not _same(fb.front, known[0]) and _same(fb.front, known[1])
+                and _same(fb.back, known[0])):
+            self._tex[0], self._tex[1] = self._tex[1], self._tex[0]
+            known[0], known[1] = known[1], known[0]
+            for i in (0, 1):
+                GL.glFramebufferTexture2D(GL.GL_FRAMEBUFFER, GL.GL_COLOR_ATTACHMENT0 + i,
+                                          GL.GL_TEXTURE_2D, self._tex[i], 0)
+        colours = (fb.front,) if fb.back is None else (fb.front, fb.back)
+        for i, plane in enumerate(colours):
+            if UPLOAD_CHANGED_ONLY and _same(plane, known[i]):
+                continue
+            data = np.ascontiguousarray(plane).copy()
+            GL.glBindTexture(GL.GL_TEXTURE_2D, self._tex[i])
             sub_image(GL.GL_TEXTURE_2D, 0, 0, 0, w, h, GL.GL_RGBA, GL.GL_UNSIGNED_BYTE,
                       _ptr(data))
-        GL.glBindTexture(GL.GL_TEXTURE_2D, self._tex[2])
-        packed = self._packed_depth_stencil()
-        sub_image(GL.GL_TEXTURE_2D, 0, 0, 0, w, h, GL.GL_DEPTH_STENCIL,
-                  GL.GL_UNSIGNED_INT_24_8, _ptr(packed))
+            known[i] = data
+        if fb.z is not None or fb.stencil is not None:
+            if not (UPLOAD_CHANGED_ONLY and _same(fb.z, known[2])
+                    and _same(fb.stencil, known[3])):
+                GL.glBindTexture(GL.GL_TEXTURE_2D, self._tex[2])
+                packed = self._packed_depth_stencil()
+                sub_image(GL.GL_TEXTURE_2D, 0, 0, 0, w, h, GL.GL_DEPTH_STENCIL,
+                          GL.GL_UNSIGNED_INT_24_8, _ptr(packed))
+                known[2] = None if fb.z is None else fb.z.copy()
+                known[3] = None if fb.stencil is None else fb.stencil.copy()
         GL.glBindTexture(GL.GL_TEXTURE_2D, 0)
 
     def _packed_depth_stencil(self) -> np.ndarray:
@@ -165,22 +199,27 @@ class Surface(mesa.MesaPeer):
         w, h = self.width, self.height
         targets = []
         if front:
-            targets.append((GL.GL_COLOR_ATTACHMENT0, fb.front))
+            targets.append((0, fb.front))
         if back and fb.back is not None:
-            targets.append((GL.GL_COLOR_ATTACHMENT1, fb.back))
-        for att, plane in targets:
-            GL.glReadBuffer(att)
+            targets.append((1, fb.back))
+        for i, plane in targets:
+            GL.glReadBuffer(GL.GL_COLOR_ATTACHMENT0 + i)
             out = np.empty((h, w), np.uint32)
             read(0, 0, w, h, GL.GL_RGBA, GL.GL_UNSIGNED_BYTE, _ptr(out))
             plane[...] = out
+            self._known[i] = out
         if depth_stencil and (fb.z is not None or fb.stencil is not None):
             raw = np.empty((h, w), np.uint32)
             read(0, 0, w, h, GL.GL_DEPTH_STENCIL, GL.GL_UNSIGNED_INT_24_8, _ptr(raw))
             if fb.z is not None:
-                fb.z[...] = (raw >> np.uint32(8)).astype(np.int64) + ZMIN
+                z = ((raw >> np.uint32(8)).astype(np.int32) + np.int32(ZMIN))
+                fb.z[...] = z
+                self._known[2] = z
             if fb.stencil is not None:
                 # Fewer than 8 stencil planes (stensize): only those bits exist.
-                fb.stencil[...] = raw & np.uint32((1 << fb.config.stencil) - 1)
+                st = (raw & np.uint32((1 << fb.config.stencil) - 1)).astype(np.uint8)
+                fb.stencil[...] = st
+                self._known[3] = st
 
     def apply(self, state: RasterState) -> None:
         """GL state for ``state``: the peer's mapping plus the draw buffers."""
