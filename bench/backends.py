@@ -46,6 +46,25 @@ def worker(backend: str, threads: int, width: int, height: int, rounds: int) -> 
     backends.set_backend(backend)
     vthreads.set_threads(threads)
     out: dict = {}
+    spent = {"flush": 0.0, "upload": 0.0, "readback": 0.0}
+    if backend == "opengl":
+        from vgxsim.backends.opengl.batch import OpenGLBatch
+        from vgxsim.backends.opengl.surface import Surface
+
+        def timed(cls, name, key):
+            real = getattr(cls, name)
+
+            def wrapper(self, *a, **k):
+                t = time.perf_counter()
+                try:
+                    return real(self, *a, **k)
+                finally:
+                    spent[key] += time.perf_counter() - t
+            setattr(cls, name, wrapper)
+
+        timed(OpenGLBatch, "flush", "flush")
+        timed(Surface, "begin", "upload")
+        timed(Surface, "end", "readback")  # waits for GL to finish drawing
     for name in WORKLOADS:
         prog = Shadows(edges="all" if name.endswith("all_edges") else "silhouette")
         gl.prefsize(width, height)
@@ -59,11 +78,18 @@ def worker(backend: str, threads: int, width: int, height: int, rounds: int) -> 
         frame()  # compiles, creates the GL context
         frame()
         ts = []
+        parts = {k: [] for k in spent}
         for _ in range(rounds):
+            for k in spent:
+                spent[k] = 0.0
             t = time.perf_counter()
             frame()
             ts.append(time.perf_counter() - t)
+            for k, v in spent.items():
+                parts[k].append(v)
         out[name] = float(np.median(ts))
+        if backend == "opengl":
+            out[name + "_parts"] = {k: float(np.median(v)) for k, v in parts.items()}
         gl.winclose(gid)
     if backend == "opengl":
         from vgxsim.reference.mesa import mesa_renderer_string
@@ -101,6 +127,15 @@ def main(argv=None) -> int:
             ratio = "" if base is None else f" ({res[n] / base[n]:.2f}x)"
             cells += f"{res[n] * 1e3:17.1f}{ratio:>9s}"
         print(f"{label:28s}{cells}  {res.get('renderer', '')}")
+    print("OpenGL frame split (ms, medians): flush = upload + GL drawing + readback")
+    for label, res in results.items():
+        for n in WORKLOADS:
+            parts = res.get(n + "_parts")
+            if parts:
+                print(f"  {label:28s} {n:20s} flush {parts['flush'] * 1e3:6.1f}  upload "
+                      f"{parts['upload'] * 1e3:5.1f}  draw+readback "
+                      f"{parts['readback'] * 1e3:6.1f}  front end "
+                      f"{(res[n] - parts['flush']) * 1e3:6.1f}")
     return 0
 
 
