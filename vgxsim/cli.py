@@ -142,6 +142,13 @@ def _run(ns: argparse.Namespace, program_args: list[str]) -> int:
     if ns.events is not None and not os.path.isfile(ns.events):
         print(f"vgxsim run: no such event script: {ns.events}", file=sys.stderr)
         return 2
+    if ns.backend == "opengl":
+        from vgxsim.backends.opengl.surface import available
+
+        if not available():
+            print("vgxsim run: the opengl backend needs PyOpenGL and libOSMesa "
+                  "(pip install 'vgxsim[opengl]'; apt install libosmesa6)", file=sys.stderr)
+            return 2
     try:
         return run_program(ns.program, program_args, events=ns.events, frames=ns.frames,
                            size=ns.size, max_frames=ns.max_frames, fps=ns.fps,

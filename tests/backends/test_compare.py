@@ -45,6 +45,9 @@ def test_compare_reports_the_blend_rounding_and_honours_levels(capsys, tmp_path)
     assert row.split()[2:4] == ["100", "1"] and "past tolerance: colour" in row
     assert (tmp_path / "diff_0000.png").exists()
     assert main(["compare", BLEND, "--levels", "1"]) == 0
+    # 100 of 256 pixels differ: within a tolerance of 40 %, past one of 30 %.
+    assert main(["compare", BLEND, "--tolerance", "0.4"]) == 0
+    assert main(["compare", BLEND, "--tolerance", "0.3"]) == 1
 
 
 @needs_gl
@@ -60,6 +63,16 @@ def test_compare_scripted_program_identical(capsys):
 def test_run_with_opengl_backend(capsys):
     assert main(["run", HIST, "--backend", "opengl", "--events",
                  os.path.join(HERE, "..", "cli", "programs", "histstyle.events")]) == 0
+
+
+def test_opengl_missing_is_a_clear_error(capsys, monkeypatch):
+    from vgxsim.backends.opengl import surface
+
+    monkeypatch.setattr(surface, "available", lambda: False)
+    assert main(["run", HIST, "--backend", "opengl"]) == 2
+    assert "needs PyOpenGL and libOSMesa" in capsys.readouterr().err
+    assert main(["compare", HIST]) == 2
+    assert "needs PyOpenGL and libOSMesa" in capsys.readouterr().err
 
 
 def test_compare_missing_program(capsys):

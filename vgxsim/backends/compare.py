@@ -179,8 +179,13 @@ def compare_program(program: str | PathLike, args=(), *, events=None, size=None,
         runs' frames or exit statuses differ), the program's status when that is
         non-zero on both backends alike.
     """
+    from vgxsim.backends import BackendError
+    from vgxsim.backends.opengl.surface import available
     from vgxsim.sinks import write_png
 
+    if not available():
+        raise BackendError("the opengl backend needs PyOpenGL and libOSMesa "
+                           "(pip install 'vgxsim[opengl]'; apt install libosmesa6)")
     status_s, frames_s = capture_run(program, args, backend="software", events=events,
                                      size=size, max_frames=max_frames)
     status_g, frames_g = capture_run(program, args, backend="opengl", events=events,

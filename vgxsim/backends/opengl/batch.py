@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from vgxsim.backends.opengl.surface import Surface
+from vgxsim.backends.opengl.surface import Surface, available
 from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, MAX_PRIMITIVES, CommandBatch
 from vgxsim.kernels.clip import ONE
 from vgxsim.state.planes import ZMAX, ZMIN
@@ -120,6 +120,11 @@ class OpenGLBatch(CommandBatch):
     """
 
     def __init__(self, framebuffer):
+        if not available():
+            from vgxsim.backends import BackendError
+
+            raise BackendError("the opengl backend needs PyOpenGL and libOSMesa "
+                               "(pip install 'vgxsim[opengl]'; apt install libosmesa6)")
         super().__init__(framebuffer)
         self.surface: Surface | None = None
         # The software batch on the same planes draws what OpenGL cannot express.
