@@ -1,6 +1,6 @@
 """Shared test set-up: the backend parametrization.
 
-The modules in :data:`BOTH_BACKENDS` (and any test marked ``both_backends``) run
+The tests under :data:`BOTH_BACKENDS` (and any test marked ``both_backends``) run
 once per backend, as ``test[software]`` and ``test[opengl]``; the OpenGL run is
 skipped where PyOpenGL or libOSMesa is missing.  The backend is set before the
 test's fixtures run (they open windows), and reset after.  On OpenGL the tests in
@@ -17,21 +17,15 @@ import pytest
 
 import vgxsim.backends as backends
 
-#: Test modules (relative to the repository root) run on both backends: every gl
-#: test that draws and reads planes back.  (tests/shadow caches its renders per
-#: module, whatever the backend; tests/backends compares the shadows program's
-#: planes across backends instead.)
-BOTH_BACKENDS = (
-    "tests/gl/test_accum_gl.py",
-    "tests/gl/test_color.py",
-    "tests/gl/test_draw.py",
-    "tests/gl/test_lighting_gl.py",
-    "tests/gl/test_objects.py",
-    "tests/gl/test_oldstyle.py",
-    "tests/gl/test_raster.py",
-    "tests/gl/test_readback.py",
-    "tests/gl/test_text.py",
-)
+#: Test folders and modules (relative to the repository root, folders ending in
+#: "/") run on both backends: the gl layer, lighting and the command stream --
+#: every test that draws through vgxsim.gl or a Context and reads planes back.
+#: (tests/kernels and tests/reference drive the software batch itself;
+#: tests/shadow caches its renders per module, whatever the backend, so
+#: tests/backends compares the shadows program's planes across backends instead;
+#: tests/conformance compares the software pipeline with Mesa, which on the
+#: OpenGL backend would compare Mesa with itself.)
+BOTH_BACKENDS = ("tests/gl/", "tests/lighting/", "tests/stream/")
 
 #: Tests whose exact software expectation OpenGL misses, with the entry of
 #: docs/opengl_backend.md that allows it.
@@ -53,7 +47,8 @@ def pytest_configure(config):
 
 
 def pytest_generate_tests(metafunc):
-    if (_rel(metafunc.definition.fspath) in BOTH_BACKENDS
+    path = _rel(metafunc.definition.fspath)
+    if (any(path == p or (p.endswith("/") and path.startswith(p)) for p in BOTH_BACKENDS)
             or metafunc.definition.get_closest_marker("both_backends")):
         if "vgx_backend" not in metafunc.fixturenames:
             metafunc.fixturenames.append("vgx_backend")
