@@ -110,6 +110,10 @@ def gouraud_colours(corner_rgba: np.ndarray) -> np.ndarray:
     return out.reshape(-1, 4).astype(np.float32)
 
 
+def _copies(*arrays):
+    return tuple(None if a is None else np.array(a) for a in arrays)
+
+
 class OpenGLBatch(CommandBatch):
     """A :class:`~vgxsim.batch.CommandBatch` whose flush draws with OpenGL.
 
@@ -173,8 +177,10 @@ class OpenGLBatch(CommandBatch):
             return 0
         if self._cpu_route(rs):
             self.ntris += nt
-            self._queue((_CPU, rs, "add_triangles", (xf, yf, zw, col, tris, src, flat_col,
-                                                     rs)), nt)
+            # Copies: the software batch sets up at the flush, and the caller may
+            # reuse its arrays once this call returns.
+            self._queue((_CPU, rs, "add_triangles", (*_copies(xf, yf, zw, col, tris, src,
+                                                              flat_col), rs)), nt)
             return nt
         flat = rs.shademodel == FLAT or col is None
         corners = tris.reshape(-1)
@@ -205,7 +211,7 @@ class OpenGLBatch(CommandBatch):
         if n == 0:
             return
         if self._cpu_route(rs):
-            self._queue((_CPU, rs, "add_fragments", (xy, z, rgba, rs)), 1)
+            self._queue((_CPU, rs, "add_fragments", (*_copies(xy, z, rgba), rs)), 1)
             return
         xy = np.asarray(xy)
         pos = np.empty((n, 3), np.float32)
