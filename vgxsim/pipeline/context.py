@@ -15,6 +15,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from vgxsim.backends import make_batch
 from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, CommandBatch
 from vgxsim.geometry.pipeline import Viewing
 from vgxsim.kernels.accum import accumulate
@@ -116,7 +117,7 @@ class Context:
             self.batch.flush()
         self.config = config
         self.fb = Framebuffer(config)
-        self._batch = CommandBatch(self.fb)
+        self._batch = make_batch(self.fb)  # the backend switch (vgxsim/backends)
         self.stream.forget()
         old = getattr(self, "raster", None)
         self.raster = RasterRegisters(config.width, config.height, config.double)
