@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim.geometry import assembly
-from vgxsim.geometry.pipeline import Viewing, draw_lines, draw_points, draw_triangles
+from vgxsim.geometry.pipeline import Viewing, draw_points, draw_polyline, draw_triangles
 from vgxsim.geometry.transform import apply
 from vgxsim.lighting import shade
 from vgxsim.state.raster import FLAT, needs_colour
@@ -242,9 +242,8 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
             rgba = np.array(cols, dtype=np.float64)
     if kind in (LINE, CLOSEDLINE):
         segs = assembly.line_segments(n, kind == CLOSEDLINE)
-        starts, end = _pattern_starts(obj, segs, view)
-        draw_lines(ctx.raw_batch, rs, view, obj, rgba, segs, starts + int(pattern_offset))
-        ctx.linestyle_pos = int(pattern_offset) + end
+        ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs,
+                                          int(pattern_offset))
         return
     draw_points(ctx.raw_batch, rs, view, obj, rgba)
 
@@ -269,23 +268,6 @@ def triangles_of(state: DrawState, kind, n, obj, view, swaps, indices, provoking
     else:
         raise ValueError(f"unknown primitive kind {kind!r}")
     return np.asarray(tris, np.int64).reshape(-1, 3), prov
-
-
-def _pattern_starts(obj, segs, view) -> tuple[np.ndarray, int]:
-    """Line-style position of each segment (it continues along a polyline), and
-    the position after the last segment."""
-    if segs.shape[0] == 0:
-        return np.zeros(0, np.int64), 0
-    clip = apply(obj, view.mvp)
-    w = np.where(clip[:, 3] == 0, 1e-30, clip[:, 3])
-    l, r, b, t = view.viewport
-    x = (clip[:, 0] / w + 1) * (r - l + 1) / 2
-    y = (clip[:, 1] / w + 1) * (t - b + 1) / 2
-    steps = np.maximum(np.abs(np.round(x[segs[:, 1]]) - np.round(x[segs[:, 0]])),
-                       np.abs(np.round(y[segs[:, 1]]) - np.round(y[segs[:, 0]])))
-    steps = np.nan_to_num(steps, nan=0.0, posinf=0.0, neginf=0.0).astype(np.int64)
-    total = np.cumsum(steps)
-    return np.concatenate([[0], total[:-1]]).astype(np.int64), int(total[-1])
 
 
 def _concave_triangles(obj, view) -> np.ndarray:
