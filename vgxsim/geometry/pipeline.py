@@ -12,7 +12,7 @@ from typing import NamedTuple
 import numpy as np
 
 from vgxsim.geometry.transform import apply
-from vgxsim.kernels.clip import clip_segments, clip_triangles, outcodes, project_snap
+from vgxsim.kernels.clip import NO_PLANES, clip_segments, clip_triangles, outcodes, project_snap
 from vgxsim.kernels.lines import count_line_fragments, line_fragments, line_steps, point_fragments
 from vgxsim.state.raster import FLAT, RasterState
 
@@ -30,11 +30,15 @@ class Viewing(NamedTuple):
         Inclusive (l, r, b, t).
     depth : tuple of 2 float
         lsetdepth (near, far).
+    user_planes : ndarray, shape (K, 4), float64
+        The user clip planes on (clipplane(3G)), in clip space: a clip-space point
+        ``p`` (row) is kept where ``user_planes @ p >= 0`` for every row.
     """
 
     mvp: np.ndarray
     viewport: tuple
     depth: tuple
+    user_planes: np.ndarray = NO_PLANES
 
 
 def _guard(viewport) -> tuple[float, float]:
@@ -113,7 +117,7 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
     attr = np.ascontiguousarray(rgba, dtype=np.float64) if want else np.zeros((clip_v.shape[0], 0))
     gx, gy = _guard(view.viewport)
     out_v, out_attr, out_tris, out_src = clip_triangles(
-        np.ascontiguousarray(clip_v), attr, tris, gx, gy)
+        np.ascontiguousarray(clip_v), attr, tris, gx, gy, view.user_planes)
     xf, yf, zw = _project(out_v, view, rs.subpixel)
     flat = None
     if want and (rs.shademodel == FLAT):
@@ -190,7 +194,8 @@ def _clipped_segments(rs: RasterState, view: Viewing, obj, rgba, segs):
         attr = attr.copy()
         flat = attr[segs[:, 1]]
     gx, gy = _guard(view.viewport)
-    cv, ca, src, _t0 = clip_segments(np.ascontiguousarray(clip_v), attr, segs, gx, gy)
+    cv, ca, src, _t0 = clip_segments(np.ascontiguousarray(clip_v), attr, segs, gx, gy,
+                                     view.user_planes)
     if cv.shape[0] == 0:
         return None
     xf, yf, zw = _project(np.ascontiguousarray(cv.reshape(-1, 4)), view, rs.subpixel)
@@ -219,7 +224,7 @@ def draw_points(batch, rs: RasterState, view: Viewing, obj, rgba) -> int:
     """Transform, cull outside the view volume, and queue points as fragments."""
     clip_v = np.ascontiguousarray(to_clip(obj, view.mvp))
     gx, gy = _guard(view.viewport)
-    keep = outcodes(clip_v, gx, gy) == 0
+    keep = outcodes(clip_v, gx, gy, view.user_planes) == 0
     if not keep.any():
         return 0
     clip_v = np.ascontiguousarray(clip_v[keep])

@@ -8,6 +8,7 @@ validates its arguments and raises a :class:`GLError` subclass naming the call.
 from vgxsim.GL import *  # noqa: F401,F403  (constants, for convenience)
 
 from ._accum import *  # noqa: F401,F403
+from ._clip import *  # noqa: F401,F403
 from ._color import *  # noqa: F401,F403
 from ._compat import *  # noqa: F401,F403
 from ._core import GLError, GLTypeError, GLUsageError, GLValueError  # noqa: F401

@@ -18,6 +18,7 @@ import numpy as np
 from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, CommandBatch
 from vgxsim.geometry.pipeline import Viewing
 from vgxsim.kernels.accum import accumulate
+from vgxsim.kernels.clip import NO_PLANES
 from vgxsim.lighting import LightingError, LightingTables, light_to_eye
 from vgxsim.pipeline.decode import drain
 from vgxsim.pipeline.draw import commit_triangles
@@ -90,6 +91,13 @@ class Context:
         self.prim: str | None = None
         self.concave = False
         self.linestyle_pos = 0  # line-style position after the last line drawn
+        # clipplane(3G) (gl/_clip.py): the six planes' eye-space equations (None:
+        # never defined), which are on, the (K, 4) array of those on (replaced, never
+        # mutated), and a serial every clipplane call bumps (draw-state interning).
+        self.clip_plane_defs: list = [None] * 6
+        self.clip_planes_on: set[int] = set()
+        self.user_planes = NO_PLANES
+        self.clip_serial = 0
         # Old-style drawing (gl/_oldstyle.py): the current graphics position (object
         # coordinates, move(3G)/draw(3G)); text (gl/_text.py): the current character
         # position in window pixels (cmov(3G)), its z, whether it is defined (cmov:

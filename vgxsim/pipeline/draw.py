@@ -177,7 +177,8 @@ def commit_triangles(ctx) -> None:
     tris = joined(2)
     prov = joined(3)
     flat = None if (rgba is None or rs.shademodel != FLAT) else rgba[prov]
-    draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth), obj,
+    draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth,
+                                               state.user_planes), obj,
                    rgba, tris, flat, tri_states=tri_states)
 
 
@@ -222,7 +223,7 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
     litm = None
     if lighting:
         litm = np.ones(n, bool) if lit is None else np.asarray(lit, bool)
-    view = Viewing(state.mvp, state.viewport, state.depth)
+    view = Viewing(state.mvp, state.viewport, state.depth, state.user_planes)
     if kind not in (LINE, CLOSEDLINE, POINT):
         tris, prov = triangles_of(state, kind, n, obj, view, swaps, indices, provoking)
         if cols is not None and not private:
