@@ -16,6 +16,7 @@ from ._curves import *  # noqa: F401,F403
 from ._draw import *  # noqa: F401,F403
 from ._events import *  # noqa: F401,F403
 from ._fm import *  # noqa: F401,F403
+from ._fog import *  # noqa: F401,F403
 from ._lighting import *  # noqa: F401,F403
 from ._matrix import *  # noqa: F401,F403
 from ._menus import *  # noqa: F401,F403

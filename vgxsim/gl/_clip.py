@@ -66,4 +66,4 @@ def clipplane(index: int, mode: int, params=(0.0, 0.0, 0.0, 0.0)) -> None:
                        else np.zeros(4) for j in on], np.float64).reshape(-1, 4)
     planes.flags.writeable = False
     ctx.user_planes = planes
-    ctx.clip_serial += 1
+    ctx.vertex_serial += 1

@@ -134,7 +134,7 @@ def _restate(ctx, st) -> None:
     if (regs._snapshot is not None and regs._snapshot is st.raster
             and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
             and ctx.lighting_serial == st.lighting_serial and ctx.concave is st.concave
-            and ctx.clip_serial == st.clip_serial):
+            and ctx.vertex_serial == st.vertex_serial):
         return
     idx = ctx.states.intern(ctx)
     st.raster = regs._snapshot
@@ -142,7 +142,7 @@ def _restate(ctx, st) -> None:
     st.depth = ctx.depth_range
     st.lighting_serial = ctx.lighting_serial
     st.concave = ctx.concave
-    st.clip_serial = ctx.clip_serial
+    st.vertex_serial = ctx.vertex_serial
     st.ops.append(STATE)
     st.ops.append(idx)
 

@@ -92,12 +92,16 @@ class Context:
         self.concave = False
         self.linestyle_pos = 0  # line-style position after the last line drawn
         # clipplane(3G) (gl/_clip.py): the six planes' eye-space equations (None:
-        # never defined), which are on, the (K, 4) array of those on (replaced, never
-        # mutated), and a serial every clipplane call bumps (draw-state interning).
+        # never defined), which are on, and the (K, 4) array of those on (replaced,
+        # never mutated).  fogvertex(3G) (gl/_fog.py): the fog definition (a
+        # FogState without its modelview, or None) and whether fog is on.  Every
+        # clipplane and fogvertex call bumps ``vertex_serial`` (draw-state interning).
         self.clip_plane_defs: list = [None] * 6
         self.clip_planes_on: set[int] = set()
         self.user_planes = NO_PLANES
-        self.clip_serial = 0
+        self.fog_def = None
+        self.fog_on = False
+        self.vertex_serial = 0
         # Old-style drawing (gl/_oldstyle.py): the current graphics position (object
         # coordinates, move(3G)/draw(3G)); text (gl/_text.py): the current character
         # position in window pixels (cmov(3G)), its z, whether it is defined (cmov:

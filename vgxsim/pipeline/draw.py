@@ -18,6 +18,7 @@ from vgxsim.geometry.transform import apply
 from vgxsim.lighting import shade
 from vgxsim.state.raster import FLAT, needs_colour
 
+from .fog import fog_vertices
 from .records import DrawState, same_projection, same_state
 
 #: Fast-path switch: one geometry pass for consecutive triangle primitives whose
@@ -93,6 +94,8 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
     """Vertex colours of one part through the lighting equation, with two-sided
     lighting's duplicated vertices: (obj, rgba, tris, prov)."""
     if cols is None or normals is None or state.lighting is None:
+        if cols is not None and state.fog is not None:
+            cols = fog_vertices(state.fog, obj, cols)
         return obj, cols, tris, prov
     rgba = shade_vertices(state, lmcolor_set, obj, normals, cols, lit)
     if state.lighting.lmodel.twoside:
@@ -106,6 +109,8 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
         rgba = np.concatenate([rgba, back_rgba])
         tris = np.where(backs[:, None], tris + n, tris)
         prov = np.where(backs, prov + n, prov)
+    if state.fog is not None:
+        rgba = fog_vertices(state.fog, obj, rgba)
     return obj, rgba, tris, prov
 
 
@@ -241,6 +246,8 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
                                   cols, litm)
         else:
             rgba = np.array(cols, dtype=np.float64)
+        if state.fog is not None:
+            rgba = fog_vertices(state.fog, obj, rgba)
     if kind in (LINE, CLOSEDLINE):
         segs = assembly.line_segments(n, kind == CLOSEDLINE)
         ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs,

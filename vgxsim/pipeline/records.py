@@ -16,6 +16,8 @@ import numpy as np
 from vgxsim.kernels.clip import NO_PLANES
 from vgxsim.state.raster import RasterState, needs_colour
 
+from .fog import FogState
+
 
 class LightingState(NamedTuple):
     """Everything per-vertex lighting reads (lmbind(3G)), without the lmcolor
@@ -54,6 +56,8 @@ class DrawState(NamedTuple):
     user_planes : ndarray, shape (K, 4), float64
         The user clip planes on (clipplane(3G)), in clip space (``NO_PLANES``, one
         shared object, when none is on).
+    fog : FogState or None
+        Vertex fog (fogvertex(3G)) when it is on in RGB mode, else None.
     """
 
     raster: RasterState
@@ -64,6 +68,20 @@ class DrawState(NamedTuple):
     lmcolor_mode: int
     concave: bool
     user_planes: np.ndarray = NO_PLANES
+    fog: FogState | None = None
+
+
+def fog_state(ctx) -> FogState | None:
+    """The window's vertex fog with the modelview it is measured in, or None."""
+    if not ctx.fog_on or ctx.fog_def is None or not ctx.config.rgb:
+        return None
+    return ctx.fog_def._replace(modelview=ctx.matrices.modelview_matrix())
+
+
+def same_fog(a: FogState | None, b: FogState | None) -> bool:
+    if a is None or b is None:
+        return a is b
+    return a[:5] == b[:5] and a.modelview is b.modelview
 
 
 def clip_space_planes(ctx) -> np.ndarray:
@@ -123,7 +141,7 @@ def same_state(a: DrawState, b: DrawState) -> bool:
     return (a.raster is b.raster and a.mvp is b.mvp and a.viewport == b.viewport
             and a.depth == b.depth and a.lmcolor_mode == b.lmcolor_mode
             and a.concave == b.concave and same_lighting(a.lighting, b.lighting)
-            and same_planes(a.user_planes, b.user_planes))
+            and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog))
 
 
 def same_geometry(a: DrawState, b: DrawState) -> bool:
@@ -136,7 +154,7 @@ def same_geometry(a: DrawState, b: DrawState) -> bool:
             and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
             and needs_colour(ra) == needs_colour(rb)
             and same_lighting(a.lighting, b.lighting)
-            and same_planes(a.user_planes, b.user_planes))
+            and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog))
 
 
 def same_projection(a: DrawState, b: DrawState) -> bool:
@@ -166,13 +184,13 @@ class StateTable:
     def intern(self, ctx) -> int:
         """Index of the window's current draw state (one record per distinct value:
         the key holds the identities of its immutable parts, the lighting
-        serial, which every lighting call bumps, and the clip-plane serial, which
-        every clipplane call bumps)."""
+        serial, which every lighting call bumps, and the vertex-stage serial, which
+        every clipplane and fogvertex call bumps)."""
         rs = ctx.raster.snapshot()
         mvp = ctx.matrices.mvp()
         key = (id(rs), id(mvp), ctx.raster.viewport, ctx.depth_range, ctx.lighting_serial,
                ctx.lmcolor_mode, ctx.concave, ctx.config.rgb, id(ctx.bound["lights"]),
-               ctx.clip_serial)
+               ctx.vertex_serial)
         idx = self._index.get(key)
         if idx is not None and self.records[idx].raster is rs and self.records[idx].mvp is mvp:
             return idx
@@ -183,7 +201,7 @@ class StateTable:
     def _new(self, ctx) -> int:
         rec = DrawState(ctx.raster.snapshot(), ctx.matrices.mvp(), ctx.raster.viewport,
                         ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
-                        bool(ctx.concave), clip_space_planes(ctx))
+                        bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx))
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1
