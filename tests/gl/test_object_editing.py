@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from vgxsim import GL, gl
-from vgxsim.gl._core import GLUsageError, GLValueError
+from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError
 
 W = H = 8
 
@@ -178,3 +178,42 @@ def test_newtag_counts_routines_after_a_tag(win):
     gl.closeobj()
     expect(ctx, (gl.translate, (1.0, 0.0, 0.0)), (gl.cpack, (RED,)),
            (gl.rectfi, (0, 0, 2, 2)), (gl.cpack, (GREEN,)), (gl.rectfi, (4, 4, 6, 6)))
+
+
+# -- callfunc and bbox2 (routines that act when the object is drawn) ---------------------
+def test_callfunc_runs_now_and_at_each_callobj(win):
+    win()
+    calls = []
+    gl.callfunc(calls.append, "now")
+    gl.makeobj(4)
+    gl.callfunc(calls.append, "drawn")
+    gl.closeobj()
+    assert calls == ["now"]
+    gl.callobj(4)
+    gl.callobj(4)
+    assert calls == ["now", "drawn", "drawn"]
+    with pytest.raises(GLTypeError, match="fctn must be callable"):
+        gl.callfunc(3)
+
+
+def _boxed(box_call, *box):
+    gl.makeobj(5)
+    box_call(*box)
+    gl.cpack(RED)
+    gl.rectfi(0, 0, 7, 7)
+    gl.closeobj()
+
+
+@pytest.mark.parametrize("box, drawn", [
+    ((gl.bbox2, 0, 0, 1.0, 1.0, 3.0, 3.0), True),  # inside the viewport
+    ((gl.bbox2i, 0, 0, 20, 20, 30, 30), False),  # wholly to the upper right
+    ((gl.bbox2s, 0, 0, -9, 0, -2, 5), False),  # wholly to the left
+    ((gl.bbox2i, 2, 2, 2, 2, 4, 4), True),  # 2 pixels each way: not under 2x2
+    ((gl.bbox2, 3, 3, 2.0, 2.0, 3.0, 3.0), False),  # 1x1 pixel, under 3x3: too small
+    ((gl.bbox2, 3, 1, 2.0, 2.0, 3.0, 6.0), True),  # thin but tall enough
+])
+def test_bbox2_culls_the_rest_of_the_object(win, box, drawn):
+    ctx = win()
+    _boxed(*box)
+    img = frame(ctx, lambda: gl.callobj(5))
+    assert bool(img[..., 0].any()) == drawn

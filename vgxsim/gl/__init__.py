@@ -13,6 +13,7 @@ from ._color import *  # noqa: F401,F403
 from ._compat import *  # noqa: F401,F403
 from ._core import GLError, GLTypeError, GLUsageError, GLValueError  # noqa: F401
 from ._curves import *  # noqa: F401,F403
+from ._depthcue import *  # noqa: F401,F403
 from ._draw import *  # noqa: F401,F403
 from ._events import *  # noqa: F401,F403
 from ._fm import *  # noqa: F401,F403

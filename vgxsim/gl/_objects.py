@@ -47,6 +47,8 @@ tag always falls between routines.
 
 from __future__ import annotations
 
+import numpy as np
+
 from vgxsim import GL
 from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, V
 from vgxsim.stream.opcodes import C as C_OP
@@ -56,6 +58,7 @@ from ._core import (
     GLTypeError,
     GLUsageError,
     GLValueError,
+    as_float,
     as_int,
     check_types,
     current,
@@ -67,7 +70,7 @@ from ._draw import CLOSER, OPENER, _restate, sync
 
 __all__ = ["genobj", "makeobj", "closeobj", "callobj", "delobj", "isobj", "getopenobj",
            "editobj", "maketag", "newtag", "gentag", "istag", "deltag", "objinsert",
-           "objdelete",
+           "objdelete", "callfunc", "bbox2", "bbox2i", "bbox2s",
            "objreplace", "chunksize", "compactify", "MAX_NESTING"]
 
 MAX_OBJECT = 2**31 - 1  # Object is a 31-bit integer (makeobj(3G))
@@ -502,6 +505,10 @@ def callobj(*args) -> None:
         if isinstance(seg, Tag):
             continue
         func, fargs = seg
+        if func in _BBOX and _bbox_culls(ctx, func.__name__, fargs):
+            stack.pop()  # bbox2(3G): the rest of this object is not drawn
+            chain.pop()
+            continue
         if func is callobj:
             inner = _object_arg("callobj", fargs)
             inner_obj = session.objects.get(inner)
@@ -518,6 +525,69 @@ def callobj(*args) -> None:
             stack.append((inner_obj.segments, 0))
             continue
         func(*fargs)
+
+
+@gl_function()
+def callfunc(fctn, *args) -> None:
+    """callfunc(fctn, arg, ...): call the Python callable ``fctn(arg, ...)``, in
+    immediate mode at once and from a display object each time it is drawn
+    (callfunc(3G); the C form's ``nargs`` is implied by the arguments)."""
+    if not callable(fctn):
+        raise GLTypeError(f"{describe('callfunc', (fctn, *args))}: fctn must be callable")
+    fctn(*args)
+
+
+def _bbox_args(name: str, args: tuple, integer: bool) -> tuple:
+    conv = as_int if integer else as_float
+    names = ("xmin", "ymin", "x1", "y1", "x2", "y2")
+    vals = [as_int(name, args, n, v) for n, v in zip(names[:2], args[:2], strict=True)]
+    vals += [conv(name, args, n, v) for n, v in zip(names[2:], args[2:], strict=True)]
+    return tuple(vals)
+
+
+@gl_function()
+def bbox2(xmin: int, ymin: int, x1: float, y1: float, x2: float, y2: float) -> None:
+    """bbox2(xmin, ymin, x1, y1, x2, y2): in a display object, stop drawing the rest of
+    the object when the box (x1, y1)-(x2, y2) (object coordinates, z = 0) lies
+    wholly outside the viewport, or covers fewer than ``xmin`` pixels across and fewer
+    than ``ymin`` up (bbox2(3G)).  Outside objects it has no effect."""
+    _bbox_args("bbox2", (xmin, ymin, x1, y1, x2, y2), False)
+
+
+@gl_function()
+def bbox2i(xmin: int, ymin: int, x1: int, y1: int, x2: int, y2: int) -> None:
+    """:func:`bbox2` with integer coordinates."""
+    _bbox_args("bbox2i", (xmin, ymin, x1, y1, x2, y2), True)
+
+
+@gl_function()
+def bbox2s(xmin: int, ymin: int, x1: int, y1: int, x2: int, y2: int) -> None:
+    """:func:`bbox2` with short coordinates."""
+    _bbox_args("bbox2s", (xmin, ymin, x1, y1, x2, y2), True)
+
+
+_BBOX = (bbox2, bbox2i, bbox2s)
+
+
+def _bbox_culls(ctx, name: str, fargs: tuple) -> bool:
+    """Whether a bbox2 routine culls the rest of its object, in the caller's state.
+
+    The corners go through the current matrices to window coordinates (numeric
+    model s. 1); a corner at or behind the eye (w <= 0) never culls, since its box
+    has no bounded window extent."""
+    xmin, ymin, x1, y1, x2, y2 = _bbox_args(name, fargs, name != "bbox2")
+    corners = np.array([[x1, y1, 0.0, 1.0], [x2, y1, 0.0, 1.0], [x1, y2, 0.0, 1.0],
+                        [x2, y2, 0.0, 1.0]]) @ ctx.matrices.mvp()
+    w = corners[:, 3]
+    if not (w > 0).all():
+        return False
+    l, r, b, t = ctx.raster.viewport
+    wx = (l - 0.5) + (corners[:, 0] / w + 1.0) * (r - l + 1) / 2.0
+    wy = (b - 0.5) + (corners[:, 1] / w + 1.0) * (t - b + 1) / 2.0
+    outside = (wx.max() < l - 0.5 or wx.min() > r + 0.5 or wy.max() < b - 0.5
+               or wy.min() > t + 0.5)
+    small = (wx.max() - wx.min()) < xmin and (wy.max() - wy.min()) < ymin
+    return bool(outside or small)
 
 
 def _colour_op(ctx) -> int:

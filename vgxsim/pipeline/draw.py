@@ -18,6 +18,7 @@ from vgxsim.geometry.transform import apply
 from vgxsim.lighting import shade
 from vgxsim.state.raster import FLAT, needs_colour
 
+from .depthcue import cue_vertices
 from .fog import fog_vertices
 from .records import DrawState, same_projection, same_state
 
@@ -74,6 +75,16 @@ def shade_vertices(state: DrawState, lmcolor_set: bool, obj, normals, colours, l
     return out
 
 
+def vertex_colour_stage(state: DrawState, obj, rgba):
+    """Vertex colours after lighting: depth cueing replaces them (depthcue(3G)), then
+    fog blends them (fogvertex(3G)).  ``rgba`` is returned as is when neither is on."""
+    if state.depthcue is not None:
+        rgba = cue_vertices(state.depthcue, obj, rgba, state.mvp, state.depth)
+    if state.fog is not None:
+        rgba = fog_vertices(state.fog, obj, rgba)
+    return rgba
+
+
 class PendingTriangles:
     """Triangle draws queued for one combined geometry pass.
 
@@ -94,8 +105,8 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
     """Vertex colours of one part through the lighting equation, with two-sided
     lighting's duplicated vertices: (obj, rgba, tris, prov)."""
     if cols is None or normals is None or state.lighting is None:
-        if cols is not None and state.fog is not None:
-            cols = fog_vertices(state.fog, obj, cols)
+        if cols is not None:
+            cols = vertex_colour_stage(state, obj, cols)
         return obj, cols, tris, prov
     rgba = shade_vertices(state, lmcolor_set, obj, normals, cols, lit)
     if state.lighting.lmodel.twoside:
@@ -109,9 +120,7 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
         rgba = np.concatenate([rgba, back_rgba])
         tris = np.where(backs[:, None], tris + n, tris)
         prov = np.where(backs, prov + n, prov)
-    if state.fog is not None:
-        rgba = fog_vertices(state.fog, obj, rgba)
-    return obj, rgba, tris, prov
+    return obj, vertex_colour_stage(state, obj, rgba), tris, prov
 
 
 def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
@@ -246,8 +255,7 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
                                   cols, litm)
         else:
             rgba = np.array(cols, dtype=np.float64)
-        if state.fog is not None:
-            rgba = fog_vertices(state.fog, obj, rgba)
+        rgba = vertex_colour_stage(state, obj, rgba)
     if kind in (LINE, CLOSEDLINE):
         segs = assembly.line_segments(n, kind == CLOSEDLINE)
         ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs,

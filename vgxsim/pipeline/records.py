@@ -16,6 +16,7 @@ import numpy as np
 from vgxsim.kernels.clip import NO_PLANES
 from vgxsim.state.raster import RasterState, needs_colour
 
+from .depthcue import DepthCue
 from .fog import FogState
 
 
@@ -58,6 +59,8 @@ class DrawState(NamedTuple):
         shared object, when none is on).
     fog : FogState or None
         Vertex fog (fogvertex(3G)) when it is on in RGB mode, else None.
+    depthcue : DepthCue or None
+        The depth-cue ramp when depthcue(TRUE) in RGB mode, else None.
     """
 
     raster: RasterState
@@ -69,6 +72,7 @@ class DrawState(NamedTuple):
     concave: bool
     user_planes: np.ndarray = NO_PLANES
     fog: FogState | None = None
+    depthcue: DepthCue | None = None
 
 
 def fog_state(ctx) -> FogState | None:
@@ -141,7 +145,8 @@ def same_state(a: DrawState, b: DrawState) -> bool:
     return (a.raster is b.raster and a.mvp is b.mvp and a.viewport == b.viewport
             and a.depth == b.depth and a.lmcolor_mode == b.lmcolor_mode
             and a.concave == b.concave and same_lighting(a.lighting, b.lighting)
-            and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog))
+            and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
+            and a.depthcue == b.depthcue)
 
 
 def same_geometry(a: DrawState, b: DrawState) -> bool:
@@ -154,7 +159,8 @@ def same_geometry(a: DrawState, b: DrawState) -> bool:
             and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
             and needs_colour(ra) == needs_colour(rb)
             and same_lighting(a.lighting, b.lighting)
-            and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog))
+            and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
+            and a.depthcue == b.depthcue)
 
 
 def same_projection(a: DrawState, b: DrawState) -> bool:
@@ -201,7 +207,8 @@ class StateTable:
     def _new(self, ctx) -> int:
         rec = DrawState(ctx.raster.snapshot(), ctx.matrices.mvp(), ctx.raster.viewport,
                         ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
-                        bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx))
+                        bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
+                        ctx.depthcue if ctx.depthcue_on and ctx.config.rgb else None)
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1
