@@ -139,3 +139,22 @@ def test_subpixel_line_follows_its_unsnapped_ends(win):
     # (Between the end pixels' centres (0,1)-(4,3), column 1 would be 1.5 -> 2.)
     segment((0.375, 1.0), (4.375, 3.0))
     assert lit_pixels(ctx) == {(0, 1), (1, 1), (2, 2), (3, 2)}
+
+
+def test_resetls_false_continues_the_pattern_across_lines(win):
+    from vgxsim.gl import getresetls, resetls
+
+    ctx = win()
+    ctx.colour = (1.0, 1.0, 1.0, 1.0)
+    styled(0x5555)
+    assert getresetls() == 1
+    resetls(GL.FALSE)
+    assert getresetls() == 0
+    polyline([(1, 1), (4, 1)])  # numbers 0-3: (1,1), (3,1)
+    polyline([(1, 3), (4, 3)])  # continues at 3 (the last pixel's number): 4 (2,3), 6 (4,3)
+    move2i(1, 5)
+    draw2i(4, 5)  # a move does not restart either: 6..9 -> (1,5), (3,5)
+    resetls(GL.TRUE)
+    polyline([(1, 7), (4, 7)])  # restarts: (1,7), (3,7)
+    assert lit_pixels(ctx) == {(1, 1), (3, 1), (2, 3), (4, 3), (1, 5), (3, 5), (1, 7),
+                               (3, 7)}

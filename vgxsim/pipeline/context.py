@@ -91,6 +91,7 @@ class Context:
         self.prim: str | None = None
         self.concave = False
         self.linestyle_pos = 0  # line-style position after the last line drawn
+        self.resetls = True  # resetls(3G): the pattern restarts at each line
         # clipplane(3G) (gl/_clip.py): the six planes' eye-space equations (None:
         # never defined), which are on, and the (K, 4) array of those on (replaced,
         # never mutated).  fogvertex(3G) (gl/_fog.py): the fog definition (a

@@ -258,8 +258,9 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
         rgba = vertex_colour_stage(state, obj, rgba)
     if kind in (LINE, CLOSEDLINE):
         segs = assembly.line_segments(n, kind == CLOSEDLINE)
-        ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs,
-                                          int(pattern_offset))
+        # resetls(FALSE): the pattern continues from the last line drawn.
+        start = int(pattern_offset) if state.resetls else ctx.linestyle_pos
+        ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs, start)
         return
     draw_points(ctx.raw_batch, rs, view, obj, rgba)
 

@@ -61,6 +61,8 @@ class DrawState(NamedTuple):
         Vertex fog (fogvertex(3G)) when it is on in RGB mode, else None.
     depthcue : DepthCue or None
         The depth-cue ramp when depthcue(TRUE) in RGB mode, else None.
+    resetls : bool
+        Whether the line style restarts at each line (resetls(3G)).
     """
 
     raster: RasterState
@@ -73,6 +75,7 @@ class DrawState(NamedTuple):
     user_planes: np.ndarray = NO_PLANES
     fog: FogState | None = None
     depthcue: DepthCue | None = None
+    resetls: bool = True
 
 
 def fog_state(ctx) -> FogState | None:
@@ -146,7 +149,7 @@ def same_state(a: DrawState, b: DrawState) -> bool:
             and a.depth == b.depth and a.lmcolor_mode == b.lmcolor_mode
             and a.concave == b.concave and same_lighting(a.lighting, b.lighting)
             and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
-            and a.depthcue == b.depthcue)
+            and a.depthcue == b.depthcue and a.resetls == b.resetls)
 
 
 def same_geometry(a: DrawState, b: DrawState) -> bool:
@@ -160,7 +163,7 @@ def same_geometry(a: DrawState, b: DrawState) -> bool:
             and needs_colour(ra) == needs_colour(rb)
             and same_lighting(a.lighting, b.lighting)
             and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
-            and a.depthcue == b.depthcue)
+            and a.depthcue == b.depthcue and a.resetls == b.resetls)
 
 
 def same_projection(a: DrawState, b: DrawState) -> bool:
@@ -208,7 +211,8 @@ class StateTable:
         rec = DrawState(ctx.raster.snapshot(), ctx.matrices.mvp(), ctx.raster.viewport,
                         ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
                         bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
-                        ctx.depthcue if ctx.depthcue_on and ctx.config.rgb else None)
+                        ctx.depthcue if ctx.depthcue_on and ctx.config.rgb else None,
+                        bool(getattr(ctx, "resetls", True)))
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1
