@@ -111,8 +111,9 @@ def build_parser() -> argparse.ArgumentParser:
                      help="where frames go: a directory (PNG files), a .gif or a .mp4; "
                           "written as they come, so a killed run keeps its frames")
     run.add_argument("--size", type=_size, metavar="WxH",
-                     help="size of windows opened without prefsize (default 640x512, "
-                          "at most 16384x16384)")
+                     help="the size a user gives every window: windows opened without "
+                          "prefsize open at it, the others are reshaped to it (REDRAW) "
+                          "(default: none, 640x512 without prefsize; at most 16384x16384)")
     run.add_argument("--max-frames", type=_positive_int, metavar="N",
                      help="end the run after N frames")
     run.add_argument("--timeout", type=_positive_seconds, metavar="SECONDS",

@@ -365,7 +365,9 @@ def run_program(
     frames : str, path-like, FrameSink or None
         Where frames go (see :class:`FrameRecorder`); None records nothing.
     size : (int, int), optional
-        Size of windows opened without ``prefsize``/``prefposition`` (default 640x512).
+        The size a user gives every window (default: none; windows opened without
+        ``prefsize``/``prefposition`` are 640x512): such windows open at it, the
+        others are reshaped to it at once and get REDRAW (gl/_window.py).
     max_frames : int, optional
         End the run after this many frames (for programs that never wait for input).
     timeout : float, optional
@@ -411,6 +413,7 @@ def run_program(
     session.reset()
     if size is not None:
         session.default_size = (int(size[0]), int(size[1]))
+        session.reshape_size = session.default_size  # prefsize'd windows are reshaped
     session.queue = EventQueue(source, max_frames=max_frames)
     session.sink_factory = recorder if sink_factory is None else sink_factory
     saved_backend = backends.set_backend(backend) if backend is not None else None

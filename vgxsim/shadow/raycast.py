@@ -85,7 +85,14 @@ import numpy as np
 from vgxsim import threads as _threads
 from vgxsim.geometry.pipeline import GUARD_PIXELS, to_clip
 from vgxsim.kernels.bvh import BVH, build_arrays, split_references
-from vgxsim.kernels.clip import COORD_LIMIT, ONE, clip_triangles, project_snap, snap_window
+from vgxsim.kernels.clip import (
+    COORD_LIMIT,
+    NO_PLANES,
+    ONE,
+    clip_triangles,
+    project_snap,
+    snap_window,
+)
 from vgxsim.kernels.raycast import Window, closest_hits, count_crossings, shadow_segments
 
 from .scene import Scene, shadow_faces
@@ -374,7 +381,7 @@ def _rasterized(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
     hx, hy = width / 2.0, height / 2.0
     gx, gy = max(1.0, GUARD_PIXELS / hx), max(1.0, GUARD_PIXELS / hy)  # as the pipeline
     out_v, _, out_tris, out_src = clip_triangles(
-        clip, np.zeros((n, 0)), np.arange(n, dtype=np.int64).reshape(-1, 3), gx, gy)
+        clip, np.zeros((n, 0)), np.arange(n, dtype=np.int64).reshape(-1, 3), gx, gy, NO_PLANES)
     xf, yf, _ = project_snap(np.ascontiguousarray(out_v), 0, width - 1, 0, height - 1,
                              -1.0, 1.0, bool(subpixel))
     w = out_v[:, 3]
