@@ -280,6 +280,12 @@ class _RunStopper:
     def status(self) -> int:
         return self._STATUS.get(self.pending, 0)
 
+    def raise_pending(self) -> None:
+        """End the run now if a signal or the timeout asked for it (called by vgxsim
+        code that waits for the user, where the handler itself only takes a note)."""
+        if self.pending is not None and self.armed:
+            raise RunEnded(self.pending, self._STATUS[self.pending])
+
 
 def _vgxsim_dirs() -> tuple[str, ...]:
     """Folders whose code the stopper never interrupts: vgxsim and its kernels."""
@@ -348,8 +354,11 @@ def run_program(
     timeout: float | None = None,
     fps: float = 30,
     overwrite: bool = False,
+    window=None,
+    record_events: str | PathLike | None = None,
 ) -> int:
-    """Run an IRIS GL Python program headless and return its exit status.
+    """Run an IRIS GL Python program headless (or in real windows) and return its exit
+    status.
 
     Parameters
     ----------
@@ -372,6 +381,14 @@ def run_program(
         Frame rate of video output.
     overwrite : bool
         Replace an earlier run's output (video file, PNG frames) instead of refusing.
+    window : bool or WindowBackend, optional
+        True: each IRIS GL window is a real window, input comes from the user
+        (:mod:`vgxsim.window`, needs pygame-ce); ``frames`` then records what the
+        windows showed.  A ready :class:`vgxsim.window.backend.WindowBackend` is used
+        as it is (tests feed it synthesized input).  Not with ``events``.
+    record_events : str or path-like, optional
+        With ``window``: write the user's input as an events script that replays the
+        session headless (``events=``).
 
     Returns
     -------
@@ -396,20 +413,36 @@ def run_program(
     path = os.fspath(program)
     if timeout is not None and not timeout > 0:
         raise ValueError(f"timeout must be a positive number of seconds, got {timeout}")
+    if window and events is not None:
+        raise ValueError("a window run takes its input from the user: give events or "
+                         "window, not both")
+    if record_events is not None and not window:
+        raise ValueError("record_events records a window session: give window=True")
     source = events if isinstance(events, EventSource) or events is None else load_script(
         events)
     recorder = FrameRecorder(frames, fps=fps, overwrite=overwrite)
+    backend = None
+    if window:  # imported only here: headless runs never load pygame
+        from vgxsim.window.backend import WindowBackend
+
+        backend = window if isinstance(window, WindowBackend) else WindowBackend(
+            record_events, overwrite=overwrite, max_frames=max_frames)
     session.reset()
     if size is not None:
         session.default_size = (int(size[0]), int(size[1]))
-    session.queue = EventQueue(source, max_frames=max_frames)
-    session.sink_factory = recorder
+    if backend is None:
+        session.queue = EventQueue(source, max_frames=max_frames)
+        session.sink_factory = recorder
+    else:
+        backend.install(session, recorder)
     saved_argv, saved_path = sys.argv, list(sys.path)
     sys.argv = [path, *map(str, args)]
     sys.path.insert(0, os.path.dirname(os.path.abspath(path)))
     status = 0
     ended = None  # why the run was ended from outside, for the note
     stopper = _RunStopper(timeout, path)
+    if backend is not None:  # a qread waiting for the user lets signals end the run
+        backend.check_stop = stopper.raise_pending
     try:
         with stopper, gl_modules():
             try:
@@ -453,6 +486,8 @@ def run_program(
         try:
             recorder.close()
         finally:
+            if backend is not None:
+                backend.close()
             session.reset()
     if recorder.errors:
         for exc in recorder.errors:
