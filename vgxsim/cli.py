@@ -5,13 +5,15 @@
     vgxsim --version
     vgxsim run PROGRAM.py [--events FILE] [--frames DIR|FILE.gif|FILE.mp4] [--size WxH]
                           [--max-frames N] [--timeout SECONDS] [--fps F] [--overwrite]
+                          [--window [--record DIR|FILE] [--record-events FILE]]
                           [-- PROGRAM ARGS...]
     vgxsim render [--out PATH] [--size WxH] [--mode objects|volumes|shadows]
                   [--edges all|silhouette] [--overwrite]
     vgxsim shadows [SCENE] [-o OUT] [options]    (see vgxsim.shadow.command)
     vgxsim convert MESH OUT.glo [-f]
 
-``run`` executes an IRIS GL Python program headless (see :mod:`vgxsim.runner`);
+``run`` executes an IRIS GL Python program headless (see :mod:`vgxsim.runner`), or
+with ``--window`` in real windows (:mod:`vgxsim.window`, needs ``vgxsim[window]``);
 everything after ``--`` is passed to the program.  ``render`` draws Heidmann's 1991
 scene with :mod:`vgxsim.examples.heidmann1991` and writes one image (PNG, JPEG or
 TIFF, by the file name).
@@ -65,6 +67,37 @@ _OVERWRITE_HELP = ("replace an existing output (file, or a folder's frames of an
                    "run); without it an existing output is refused and nothing runs")
 
 
+def add_window_options(parser: argparse.ArgumentParser) -> None:
+    """``--window``, ``--record`` and ``--record-events`` (vgxsim run and shadows)."""
+    parser.add_argument("--window", action="store_true",
+                        help="show each IRIS GL window as a real window and take input from "
+                             "the mouse and keyboard (needs pip install 'vgxsim[window]')")
+    parser.add_argument("--record", metavar="DIR_OR_FILE",
+                        help="where frames go, as --frames (with --window: what the windows "
+                             "showed)")
+    parser.add_argument("--record-events", metavar="FILE",
+                        help="with --window: write the input as an events script that "
+                             "replays the session headless (--events FILE)")
+
+
+def window_problem(ns: argparse.Namespace) -> str | None:
+    """Why the window options of ``ns`` cannot run, or None."""
+    if getattr(ns, "frames", None) is not None and ns.record is not None:
+        return "give --frames or --record, not both"
+    if not ns.window:
+        if ns.record_events is not None:
+            return "--record-events records a --window session"
+        return None
+    if getattr(ns, "events", None) is not None:
+        return "--window takes its input from the user: give --events or --window"
+    if ns.record_events is not None and os.path.lexists(ns.record_events) \
+            and not getattr(ns, "overwrite", False):
+        return f"{ns.record_events} exists; give --overwrite to replace it"
+    from vgxsim.window import available
+
+    return available()
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``vgxsim`` command."""
     p = argparse.ArgumentParser(
@@ -93,6 +126,7 @@ def build_parser() -> argparse.ArgumentParser:
                           "are kept and every sink completed")
     run.add_argument("--fps", type=float, default=30.0, help="video frame rate (default 30)")
     run.add_argument("--overwrite", action="store_true", help=_OVERWRITE_HELP)
+    add_window_options(run)
 
     render = sub.add_parser(
         "render", help="render Heidmann's 1991 shadow scene to an image",
@@ -124,10 +158,16 @@ def _run(ns: argparse.Namespace, program_args: list[str]) -> int:
     if ns.events is not None and not os.path.isfile(ns.events):
         print(f"vgxsim run: no such event script: {ns.events}", file=sys.stderr)
         return 2
+    problem = window_problem(ns)
+    if problem is not None:
+        print(f"vgxsim run: {problem}", file=sys.stderr)
+        return 2
     try:
-        return run_program(ns.program, program_args, events=ns.events, frames=ns.frames,
+        return run_program(ns.program, program_args, events=ns.events,
+                           frames=ns.frames if ns.record is None else ns.record,
                            size=ns.size, max_frames=ns.max_frames, timeout=ns.timeout,
-                           fps=ns.fps, overwrite=ns.overwrite)
+                           fps=ns.fps, overwrite=ns.overwrite, window=ns.window,
+                           record_events=ns.record_events)
     except ScriptError as exc:
         print(f"vgxsim run: bad event script: {exc}", file=sys.stderr)
         return 2

@@ -18,7 +18,9 @@ Input semantics (IRIS GL, see :mod:`vgxsim.window.devices` for the device number
   ``reshapeviewport`` and ``getsize`` see it);
 * closing a window: ``(WINQUIT, gid)`` if WINQUIT is queued, else ``(WINSHUT, gid)``
   if WINSHUT is, else the run ends (the workstation killed a program that did not
-  queue them); the script gets a ``stop`` then.
+  queue them); the script gets a ``stop`` then.  ``winopen`` queues both (vgxsim's
+  rule, :data:`vgxsim.events.queue.AUTO_QUEUED`), so a program that never reads them
+  would keep its window for ever: closing the same window a second time ends the run.
 
 A resize cannot be written to an events script (the script language has no statement
 for it); it is written as a comment, and a replay keeps the window's size.
@@ -98,6 +100,7 @@ class WindowBackend:
         self._by_window: dict[int, int] = {}
         self._seen_focus: set[int] = set()
         self._seen_expose: set[int] = set()
+        self._asked_to_quit: set[int] = set()
         self._motion: tuple[int, int] | None = None
         self._motion_posted = 0.0
         self._last_motion: tuple[int, int] | None = None
@@ -243,13 +246,14 @@ class WindowBackend:
         elif t == pygame.WINDOWCLOSE:
             self._flush_motion()
             q = self.queue
-            if q.isqueued(_dev("WINQUIT")):
+            if gid not in self._asked_to_quit and q.isqueued(_dev("WINQUIT")):
                 self._step(((_dev("WINQUIT"), gid),), f"WINQUIT {gid}", posted)
-            elif q.isqueued(_dev("WINSHUT")):
+            elif gid not in self._asked_to_quit and q.isqueued(_dev("WINSHUT")):
                 self._step(((_dev("WINSHUT"), gid),), f"WINSHUT {gid}", posted)
             else:
                 q.source.append(LiveStep(stop=True, text="stop",
                                          where=f"window {gid} closed"))
+            self._asked_to_quit.add(gid)
 
     def _resize(self, gid: int, w: int, h: int) -> None:
         """The user resized the window: reshape its planes (REDRAW follows)."""
