@@ -11,6 +11,10 @@ the process's own.
 
 Input comes from an event script (:mod:`vgxsim.events.script`) through the session's
 event queue; frames go to sinks made by :class:`FrameRecorder` (one per window).
+With ``window`` (``vgxsim run --window``) the same seams carry a real session: the
+queue is fed by the user's input, each window's sink shows its frames in an SDL window
+before the recorder gets them, and ``dopup`` draws its menu (:mod:`vgxsim.window`,
+imported only then).
 
 Exit status, as the program's own: ``sys.exit(n)`` gives ``n``; falling off the end
 gives 0; an uncaught exception prints its traceback and gives 1; the end of the
