@@ -8,7 +8,7 @@ import subprocess
 import sys
 import textwrap
 
-from conftest import key, motion, press, release
+from window_helpers import key, motion, press, release
 
 from vgxsim.runner import run_program
 

@@ -9,7 +9,7 @@ import os
 import re
 
 import numpy as np
-from conftest import key, motion, press, release
+from window_helpers import key, motion, press, release
 
 from vgxsim.runner import run_program
 from vgxsim.sinks import MemorySink

@@ -5,7 +5,7 @@ from __future__ import annotations
 import textwrap
 
 import pytest
-from conftest import motion, press, release
+from window_helpers import motion, press, release
 
 from vgxsim.runner import run_program
 
