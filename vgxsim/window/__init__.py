@@ -24,10 +24,10 @@ driver, 640x512): a frame goes to the screen in about 0.7 ms (one row flip of th
 RGBA image and one 32-bit blit, ``RGBX`` so no alpha blending) and SDL delivers input
 in the same thread, so no lock or second event loop sits between the user and the
 IRIS queue; pygame-ce ships binary wheels with SDL2 inside for Linux, macOS and Windows
-(no system libraries, ~13 MB) and runs under ``SDL_VIDEODRIVER=dummy`` with
-synthesized input (``pygame.event.post``) for tests.  Qt would bring a 60+ MB
-dependency and its own event loop, which the IRIS programs' own ``qread`` loops would
-have to be threaded around.
+(no system libraries; 35 MB installed) and runs under ``SDL_VIDEODRIVER=dummy`` with
+synthesized input (``pygame.event.post``) for tests.  Qt (PySide6) would bring a far
+larger dependency and its own event loop, which the IRIS programs' own ``qread``
+loops would have to be threaded around or re-entered.
 """
 
 from __future__ import annotations
