@@ -5,7 +5,10 @@ of :mod:`vgxsim.events.script` with ``after FRAME`` set to the frame count at th
 moment (``after 12 press MIDDLEMOUSE``, ``after 12 move 301 244``, ``after 40 menu
 4``).  Played back headless (``vgxsim run PROGRAM --events FILE``), the queue delivers
 each step at the first delivery point of that frame, so the program reads the same
-input between the same frames and draws the same frames.  Lines are flushed as they
+input between the same frames and draws the same frames.  The match is per frame: a
+step the user made in the middle of a frame (while the program was already blocked in
+``qread``, say) is replayed at that frame's first ``qtest`` or ``qread``, which a
+program that draws only at frame ends cannot tell apart.  Lines are flushed as they
 are written: a killed session keeps the input up to its end.
 """
 
