@@ -5,7 +5,9 @@
     vgxsim --version
     vgxsim run PROGRAM.py [--events FILE] [--frames DIR|FILE.gif|FILE.mp4] [--size WxH]
                           [--max-frames N] [--timeout SECONDS] [--fps F] [--overwrite]
-                          [--backend software|opengl] [-- PROGRAM ARGS...]
+                          [--backend software|opengl]
+                          [--window [--record DIR|FILE] [--record-events FILE]]
+                          [-- PROGRAM ARGS...]
     vgxsim compare PROGRAM.py [--events FILE] [--size WxH] [--max-frames N]
                               [--tolerance F] [--levels L] [--z-units U] [--diff DIR]
                               [-- PROGRAM ARGS...]
@@ -15,7 +17,8 @@
     vgxsim convert MESH OUT.glo [-f]
     vgxsim sweep CONFIG.toml [--scheduler ADDRESS | --local]   (see vgxsim.farm.command)
 
-``run`` executes an IRIS GL Python program headless (see :mod:`vgxsim.runner`);
+``run`` executes an IRIS GL Python program headless (see :mod:`vgxsim.runner`), or
+with ``--window`` in real windows (:mod:`vgxsim.window`, needs ``vgxsim[window]``);
 everything after ``--`` is passed to the program.  ``render`` draws Heidmann's 1991
 scene with :mod:`vgxsim.examples.heidmann1991` and writes one image (PNG, JPEG or
 TIFF, by the file name).
@@ -93,6 +96,37 @@ def _count(text: str) -> int:
     return n
 
 
+def add_window_options(parser: argparse.ArgumentParser) -> None:
+    """``--window``, ``--record`` and ``--record-events`` (vgxsim run and shadows)."""
+    parser.add_argument("--window", action="store_true",
+                        help="show each IRIS GL window as a real window and take input from "
+                             "the mouse and keyboard (needs pip install 'vgxsim[window]')")
+    parser.add_argument("--record", metavar="DIR_OR_FILE",
+                        help="where frames go, as --frames (with --window: what the windows "
+                             "showed)")
+    parser.add_argument("--record-events", metavar="FILE",
+                        help="with --window: write the input as an events script that "
+                             "replays the session headless (--events FILE)")
+
+
+def window_problem(ns: argparse.Namespace) -> str | None:
+    """Why the window options of ``ns`` cannot run, or None."""
+    if getattr(ns, "frames", None) is not None and ns.record is not None:
+        return "give --frames or --record, not both"
+    if not ns.window:
+        if ns.record_events is not None:
+            return "--record-events records a --window session"
+        return None
+    if getattr(ns, "events", None) is not None:
+        return "--window takes its input from the user: give --events or --window"
+    if ns.record_events is not None and os.path.lexists(ns.record_events) \
+            and not getattr(ns, "overwrite", False):
+        return f"{ns.record_events} exists; give --overwrite to replace it"
+    from vgxsim.window import available
+
+    return available()
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``vgxsim`` command."""
     p = argparse.ArgumentParser(
@@ -125,6 +159,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--backend", choices=("software", "opengl"),
                      help="what draws: the software pipeline or OpenGL (default: "
                           "VGXSIM_BACKEND, else software)")
+    add_window_options(run)
 
     cmp = sub.add_parser(
         "compare", help="run a program on both backends and compare its frames",
@@ -188,10 +223,16 @@ def _run(ns: argparse.Namespace, program_args: list[str]) -> int:
             print("vgxsim run: the opengl backend needs PyOpenGL and libOSMesa "
                   "(pip install 'vgxsim[opengl]'; apt install libosmesa6)", file=sys.stderr)
             return 2
+    problem = window_problem(ns)
+    if problem is not None:
+        print(f"vgxsim run: {problem}", file=sys.stderr)
+        return 2
     try:
-        return run_program(ns.program, program_args, events=ns.events, frames=ns.frames,
+        return run_program(ns.program, program_args, events=ns.events,
+                           frames=ns.frames if ns.record is None else ns.record,
                            size=ns.size, max_frames=ns.max_frames, timeout=ns.timeout,
-                           fps=ns.fps, overwrite=ns.overwrite, backend=ns.backend)
+                           fps=ns.fps, overwrite=ns.overwrite, backend=ns.backend,
+                           window=ns.window, record_events=ns.record_events)
     except ScriptError as exc:
         print(f"vgxsim run: bad event script: {exc}", file=sys.stderr)
         return 2

@@ -11,6 +11,10 @@ the process's own.
 
 Input comes from an event script (:mod:`vgxsim.events.script`) through the session's
 event queue; frames go to sinks made by :class:`FrameRecorder` (one per window).
+With ``window`` (``vgxsim run --window``) the same seams carry a real session: the
+queue is fed by the user's input, each window's sink shows its frames in an SDL window
+before the recorder gets them, and ``dopup`` draws its menu (:mod:`vgxsim.window`,
+imported only then).
 
 Exit status, as the program's own: ``sys.exit(n)`` gives ``n``; falling off the end
 gives 0; an uncaught exception prints its traceback and gives 1; the end of the
@@ -280,6 +284,12 @@ class _RunStopper:
     def status(self) -> int:
         return self._STATUS.get(self.pending, 0)
 
+    def raise_pending(self) -> None:
+        """End the run now if a signal or the timeout asked for it (called by vgxsim
+        code that waits for the user, where the handler itself only takes a note)."""
+        if self.pending is not None and self.armed:
+            raise RunEnded(self.pending, self._STATUS[self.pending])
+
 
 def _vgxsim_dirs() -> tuple[str, ...]:
     """Folders whose code the stopper never interrupts: vgxsim and its kernels."""
@@ -350,8 +360,11 @@ def run_program(
     overwrite: bool = False,
     backend: str | None = None,
     sink_factory=None,
+    window=None,
+    record_events: str | PathLike | None = None,
 ) -> int:
-    """Run an IRIS GL Python program headless and return its exit status.
+    """Run an IRIS GL Python program headless (or in real windows) and return its exit
+    status.
 
     Parameters
     ----------
@@ -382,6 +395,14 @@ def run_program(
     sink_factory : callable, optional
         ``sink_factory(gid)`` gives window ``gid``'s sink instead of ``frames``
         (``vgxsim compare`` captures frames with their z and stencil planes).
+    window : bool or WindowBackend, optional
+        True: each IRIS GL window is a real window, input comes from the user
+        (:mod:`vgxsim.window`, needs pygame-ce); ``frames`` then records what the
+        windows showed.  A ready :class:`vgxsim.window.backend.WindowBackend` is used
+        as it is (tests feed it synthesized input).  Not with ``events``.
+    record_events : str or path-like, optional
+        With ``window``: write the user's input as an events script that replays the
+        session headless (``events=``).
 
     Returns
     -------
@@ -407,15 +428,29 @@ def run_program(
     path = os.fspath(program)
     if timeout is not None and not timeout > 0:
         raise ValueError(f"timeout must be a positive number of seconds, got {timeout}")
+    if window and events is not None:
+        raise ValueError("a window run takes its input from the user: give events or "
+                         "window, not both")
+    if record_events is not None and not window:
+        raise ValueError("record_events records a window session: give window=True")
     source = events if isinstance(events, EventSource) or events is None else load_script(
         events)
     recorder = FrameRecorder(frames, fps=fps, overwrite=overwrite)
+    shown = None  # the real windows (vgxsim.window) of a --window run
+    if window:  # imported only here: headless runs never load pygame
+        from vgxsim.window.backend import WindowBackend
+
+        shown = window if isinstance(window, WindowBackend) else WindowBackend(
+            record_events, overwrite=overwrite, max_frames=max_frames)
     session.reset()
     if size is not None:
         session.default_size = (int(size[0]), int(size[1]))
         session.reshape_size = session.default_size  # prefsize'd windows are reshaped
-    session.queue = EventQueue(source, max_frames=max_frames)
-    session.sink_factory = recorder if sink_factory is None else sink_factory
+    if shown is None:
+        session.queue = EventQueue(source, max_frames=max_frames)
+        session.sink_factory = recorder if sink_factory is None else sink_factory
+    else:
+        shown.install(session, recorder)
     saved_backend = backends.set_backend(backend) if backend is not None else None
     saved_argv, saved_path = sys.argv, list(sys.path)
     sys.argv = [path, *map(str, args)]
@@ -423,6 +458,8 @@ def run_program(
     status = 0
     ended = None  # why the run was ended from outside, for the note
     stopper = _RunStopper(timeout, path)
+    if shown is not None:  # a qread waiting for the user lets signals end the run
+        shown.check_stop = stopper.raise_pending
     try:
         with stopper, gl_modules():
             try:
@@ -466,6 +503,8 @@ def run_program(
         try:
             recorder.close()
         finally:
+            if shown is not None:
+                shown.close()
             session.reset()
             if backend is not None:
                 backends.set_backend(saved_backend)

@@ -9,7 +9,16 @@ images from a shell script" (README) are what remains here, headless::
                    [--rotate AZ,EL] [--translate X,Y] [--dolly D] [--spin N] [--fps F]
                    [--subpixel on|off] [--edges silhouette|all] [--signs screen|article]
                    [--scheduler ADDRESS | --local] [--workers N]
+    vgxsim shadows [SCENE] --window [--record DIR|FILE] [--record-events FILE] [options]
+    vgxsim shadows [SCENE] --events FILE [--record DIR|FILE] [options]
     vgxsim convert MESH OUT [-f] [--normals none|face|vertex]
+
+``--window`` runs the original's interactive program (trackball, translate, dolly,
+spin, the right-button menu of display modes and soft shadows;
+``vgxsim/examples/shadows_interactive.py``) in a real window, starting in "Show Objects
+Only" as the original did; ``--record-events`` writes the session's input, and
+``--events FILE`` plays such a script to the same program headless (``--record`` the
+frames of either).
 
 SCENE is a ``.scn`` file or the name of a shipped scene (cubes, balls,
 textured_floor, dense, teapot); without it, the three cubes.  Errors in a scene or
@@ -76,9 +85,9 @@ def add_parsers(sub, size_type, positive_int) -> None:
                     help="output image (default shadows.png; with --spin spin.gif)")
     sh.add_argument("--size", type=size_type, default=(640, 512), metavar="WxH",
                     help="image size (default 640x512)")
-    sh.add_argument("--mode", choices=MODES, default="shadows",
+    sh.add_argument("--mode", choices=MODES, default=None,
                     help="display mode (README: Show Objects Only / Volumes / Mask / "
-                         "Shadows; default shadows)")
+                         "Shadows; default shadows, interactive: objects)")
     sh.add_argument("--light", type=int, default=0, metavar="N",
                     help="the light whose volumes and mask are shown (default 0)")
     sh.add_argument("--soft", type=_soft, nargs="?", const="max", default=None,
@@ -110,11 +119,19 @@ def add_parsers(sub, size_type, positive_int) -> None:
     sh.add_argument("--no-cache", action="store_true",
                     help="rebuild model adjacency instead of using the cache")
     sh.add_argument("--overwrite", action="store_true",
-                    help="replace an existing output file (without it, one is refused "
-                         "before anything is drawn)")
+                    help="replace an existing output file or earlier recording (without "
+                         "it, one is refused before anything is drawn)")
     from vgxsim.farm.command import add_scheduler_options
 
     add_scheduler_options(sh)  # where --spin frames and --soft samples run
+    from vgxsim.cli import add_window_options
+
+    add_window_options(sh)
+    sh.add_argument("--events", metavar="FILE",
+                    help="run the interactive program headless with this events script "
+                         "(e.g. one written by --record-events)")
+    sh.add_argument("--timeout", type=float, default=None, metavar="SECONDS",
+                    help="with --window or --events: end the session after SECONDS")
 
     cv = sub.add_parser(
         "convert", help="convert a mesh (OBJ, STL, PLY, OFF, GLB, .glo) to .glo or a cache",
@@ -139,9 +156,59 @@ def _progress(total: int):
     return tqdm(total=total, desc="soft shadows", unit="frame", disable=None, file=sys.stderr)
 
 
+def run_interactive(ns: argparse.Namespace) -> int:
+    """``vgxsim shadows --window`` / ``--events``: the interactive program through the
+    runner (on screen, or headless from a script)."""
+    from vgxsim.cli import window_problem
+    from vgxsim.events import ScriptError
+    from vgxsim.runner import run_program
+    from vgxsim.sinks import SinkError
+
+    prog = "vgxsim shadows"
+    problem = window_problem(ns)
+    if problem is not None:
+        print(f"{prog}: {problem}", file=sys.stderr)
+        return 2
+    if ns.events is not None and not os.path.isfile(ns.events):
+        print(f"{prog}: no such event script: {ns.events}", file=sys.stderr)
+        return 2
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    program = os.path.join(here, "examples", "shadows_interactive.py")
+    args = [*([ns.scene] if ns.scene else []), "--mode", ns.mode or "objects",
+            "--seed", str(ns.seed), "--edges", ns.edges, "--signs", ns.signs,
+            "--soft-max", str(ns.soft_max if ns.soft in (None, "max") else
+                              min(ns.soft_max, api_frames(ns.soft)))]
+    if ns.soft is not None:
+        args.append("--soft")
+    try:
+        return run_program(program, args, events=ns.events, frames=ns.record, size=ns.size,
+                           timeout=ns.timeout, overwrite=ns.overwrite, window=ns.window,
+                           record_events=ns.record_events)
+    except ScriptError as exc:
+        print(f"{prog}: bad event script: {exc}", file=sys.stderr)
+        return 2
+    except (SinkError, ImportError, ValueError) as exc:
+        print(f"{prog}: cannot record: {exc}", file=sys.stderr)
+        return 2
+
+
+def api_frames(soft) -> int:
+    from .api import _frames_for
+
+    return _frames_for(soft)
+
+
 def run_shadows(ns: argparse.Namespace) -> int:
     """Carry out ``vgxsim shadows``; returns the exit status."""
     from dataclasses import replace
+
+    if ns.window or ns.events is not None or ns.record_events is not None:
+        return run_interactive(ns)
+    if ns.record is not None:
+        print("vgxsim shadows: --record records a --window or --events session (-o names "
+              "the headless image)", file=sys.stderr)
+        return 2
+    ns.mode = ns.mode or "shadows"
 
     from vgxsim.formats import FormatError
 
