@@ -8,6 +8,7 @@ images from a shell script" (README) are what remains here, headless::
                    [--light N] [--soft [N|figure6]] [--soft-max N] [--seed N]
                    [--rotate AZ,EL] [--translate X,Y] [--dolly D] [--spin N] [--fps F]
                    [--subpixel on|off] [--edges silhouette|all] [--signs screen|article]
+                   [--technique NAME] [--option KEY=VALUE ...]
     vgxsim convert MESH OUT [-f] [--normals none|face|vertex]
 
 SCENE is a ``.scn`` file or the name of a shipped scene (cubes, balls,
@@ -103,6 +104,14 @@ def add_parsers(sub, size_type, positive_int) -> None:
     sh.add_argument("--signs", choices=SIGNS, default="screen",
                     help="INCR/DECR per face from the rasterizer's facing (screen, default) "
                          "or the article's 3-D test (article)")
+    from .techniques import TECHNIQUES
+
+    sh.add_argument("--technique", choices=tuple(TECHNIQUES), default=None,
+                    help="a shadow technique since 1991 for the shadows mode (default: the "
+                         "1991 code as printed)")
+    sh.add_argument("--option", action="append", default=[], metavar="KEY=VALUE",
+                    help="an option of the technique, e.g. --option size=1024 (numbers, "
+                         "true/false and none are converted)")
     sh.add_argument("--no-cache", action="store_true",
                     help="rebuild model adjacency instead of using the cache")
 
@@ -125,6 +134,30 @@ def _progress(total: int):
 
     # disable=None: a bar only when stderr is a terminal
     return tqdm(total=total, desc="soft shadows", unit="frame", disable=None, file=sys.stderr)
+
+
+def _technique_options(items: list[str]) -> dict:
+    """``KEY=VALUE`` strings to keyword options (int, float, bool, None or str)."""
+    out: dict = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep or not key:
+            raise ValueError(f"expected KEY=VALUE, got {item!r}")
+        low = text.lower()
+        value: object = text
+        if low in ("true", "false"):
+            value = low == "true"
+        elif low == "none":
+            value = None
+        else:
+            for conv in (int, float):
+                try:
+                    value = conv(text)
+                    break
+                except ValueError:
+                    pass
+        out[key] = value
+    return out
 
 
 def run_shadows(ns: argparse.Namespace) -> int:
@@ -166,8 +199,25 @@ def run_shadows(ns: argparse.Namespace) -> int:
         if not any(lt.jitterable for lt in scene.lights):
             print(f"{prog}: note: no light of this scene has JITTER, so soft shadows look "
                   "hard", file=sys.stderr)
+    try:
+        options = _technique_options(ns.option)
+    except ValueError as exc:
+        print(f"{prog}: --option: {exc}", file=sys.stderr)
+        return 2
     kw = dict(mode=ns.mode, size=ns.size, light=ns.light, seed=ns.seed, edges=ns.edges,
               subpixel=ns.subpixel, signs=ns.signs)
+    if ns.technique is not None:
+        kw.update(technique=ns.technique, technique_options=options)
+    from .techniques import TechniqueError
+
+    if ns.technique is not None:
+        try:
+            from .techniques import make
+
+            make(ns.technique, **options)
+        except TechniqueError as exc:
+            print(f"{prog}: --technique {ns.technique}: {exc}", file=sys.stderr)
+            return 2
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", api.ViewpointInShadowWarning)
         if ns.spin:
