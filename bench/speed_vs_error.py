@@ -1,0 +1,193 @@
+"""Speed against error for every shadow technique (issue 9, item 4).
+
+    python bench/speed_vs_error.py [--quick] [--out DIR]
+
+For every technique x resolution x subpixel mode (x shadow-map size) over the shipped
+scenes and the hard cases: the median time per frame of the program's own loop
+(``DrawFrame(); swapbuffers(); finish()`` in one window, after one untimed frame),
+and the error against the ray cast of
+:mod:`vgxsim.shadow.raycast` via :mod:`vgxsim.shadow.error`: misclassified pixels
+interior / boundary, false lit / false shadow (summed over lights), and the stencil
+count error histogram where the technique keeps counts.  Writes speed_vs_error.md,
+.csv and .png (time against interior error, the Pareto front marked) to DIR.
+The raster's work counters of the last frame (``CommandBatch.work()``: fragments,
+tiles skipped, blocks covered, stencil writes) are added beside the times when the
+batch keeps them (the shadow map's own window is not counted).
+Timings on a shared 2-core machine are noisy: compare ratios within one run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import statistics
+import time
+import warnings
+
+import numpy as np
+
+from vgxsim.shadow import api
+from vgxsim.shadow.error import count_error, shadow_error
+from vgxsim.shadow.raycast import raycast
+from vgxsim.shadow.techniques import TECHNIQUES
+from vgxsim.shadow.techniques.hard_cases import HARD_CASES
+
+
+def variants(quick: bool):
+    for name in TECHNIQUES:
+        if name == "shadowmap":
+            for n in ((256, 1024) if quick else (256, 512, 1024, 2048)):
+                yield name, {"size": n}, f"shadowmap{n}"
+        else:
+            yield name, {}, name
+
+
+def measure(scene, tech, opts, size, subpixel, repeats):
+    """Median seconds per frame of the program's own loop (one window, display
+    objects made once), the per-light lit masks (row 0 = bottom) and count planes of
+    the last frame, and the raster's work counters for it when the batch keeps them."""
+    from vgxsim.gl import TRUE, finish, prefsize, swapbuffers, winclose, winopen
+    from vgxsim.gl import subpixel as gl_subpixel
+    from vgxsim.gl._core import session
+    from vgxsim.shadow.program import Shadows
+    from vgxsim.shadow.techniques import make
+
+    technique = make(tech, **opts)
+    planes: dict[int, np.ndarray] = {}
+
+    def hook(i: int) -> None:
+        planes[i] = np.array(technique.read_mask(prog, i))
+
+    prog = Shadows(scene, signs="screen", technique=technique, stencil_hook=hook)
+    prefsize(*size)
+    gid = winopen("speed_vs_error")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            prog.setup()
+            if subpixel:
+                gl_subpixel(TRUE)
+            prog.DrawFrame()
+            swapbuffers()
+            finish()
+            batch = session.windows[session.current].batch
+            times = []
+            for _ in range(repeats):
+                if hasattr(batch, "reset_counters"):
+                    batch.reset_counters()
+                t = time.perf_counter()
+                prog.DrawFrame()
+                swapbuffers()
+                finish()
+                times.append(time.perf_counter() - t)
+            work = batch.work() if hasattr(batch, "work") else {}
+        zero = technique.lit_value(prog)
+    finally:
+        prog.teardown()
+        winclose(gid)
+    counts = [planes[i].astype(np.int64) - zero for i in sorted(planes)]
+    lit = [c == 0 for c in counts]
+    return lit, counts, statistics.median(times), work
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="a small grid")
+    ap.add_argument("--out", default="bench/out", help="output folder")
+    ns = ap.parse_args()
+    from tqdm import tqdm
+
+    os.makedirs(ns.out, exist_ok=True)
+    if ns.quick:
+        scenes = {"cubes": api.load_scene(None)}
+        scenes.update({k: HARD_CASES[k]() for k in ("eye_in_shadow", "open_box")})
+        sizes, modes, repeats = [(96, 80), (320, 256)], [True], 1
+    else:
+        scenes = {n: api.load_scene(n) for n in ("cubes", "balls", "teapot")}
+        scenes.update({k: b() for k, b in HARD_CASES.items()})
+        sizes, modes, repeats = [(96, 80), (320, 256), (640, 512)], [False, True], 3
+    vs = list(variants(ns.quick))
+    rows = []
+    bar = tqdm(total=len(scenes) * len(sizes) * len(modes) * len(vs), unit="frame",
+               desc="speed vs error")
+    for sname, sc in scenes.items():
+        for size in sizes:
+            for sp in modes:
+                ref = raycast(sc, *size, subpixel=sp)
+                for tech, opts, label in vs:
+                    bar.update(1)
+                    try:
+                        lit, counts, dt, work = measure(sc, tech, opts, size, sp, repeats)
+                    except Exception as exc:  # a technique refusing a scene: a row
+                        rows.append(dict(scene=sname, technique=label, size=f"{size[0]}x"
+                                         f"{size[1]}", subpixel=sp, ms=float("nan"),
+                                         note=type(exc).__name__))
+                        continue
+                    tot = dict(interior=0, boundary=0, false_lit=0, false_shadow=0)
+                    hist: dict[int, int] = {}
+                    for li in range(len(sc.lights)):
+                        e = shadow_error(lit[li], ref, li)
+                        for k in tot:
+                            tot[k] += getattr(e, k)
+                        if tech in ("heidmann", "finite"):
+                            c = count_error(counts[li], ref.crossings[..., li], ref.hit)
+                            for k, v in c.histogram.items():
+                                hist[k] = hist.get(k, 0) + v
+                    rows.append(dict(scene=sname, technique=label,
+                                     size=f"{size[0]}x{size[1]}", subpixel=sp,
+                                     ms=1000 * dt, **tot,
+                                     count_hist=" ".join(f"{k}:{v}" for k, v in
+                                                         sorted(hist.items()) if k),
+                                     note="", **work))
+    bar.close()
+    keys = ["scene", "technique", "size", "subpixel", "ms", "interior", "boundary",
+            "false_lit", "false_shadow", "count_hist", "note"]
+    work_keys = sorted({k for r in rows for k in r} - set(keys))
+    keys += work_keys
+    with open(os.path.join(ns.out, "speed_vs_error.csv"), "w", newline="") as fh:
+        w = csv.DictWriter(fh, keys)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: r.get(k, "") for k in keys})
+    # Pareto front over (median ms, interior errors) per technique, all rows summed
+    agg: dict[str, list[float]] = {}
+    for r in rows:
+        if r["ms"] == r["ms"]:
+            a = agg.setdefault(r["technique"], [0.0, 0.0, 0.0])
+            a[0] += r["ms"]
+            a[1] += r.get("interior", 0)
+            a[2] += r.get("boundary", 0)
+    front = {t for t, (ms, er, _) in agg.items()
+             if not any(o[0] <= ms and o[1] <= er and (o[0], o[1]) != (ms, er)
+                        for o in agg.values())}
+    with open(os.path.join(ns.out, "speed_vs_error.md"), "w") as fh:
+        fh.write("| technique | total ms | interior | boundary | Pareto |\n|---|---|---|---|---|\n")
+        for t, (ms, er, bd) in sorted(agg.items(), key=lambda kv: kv[1][0]):
+            fh.write(f"| {t} | {ms:.0f} | {er:.0f} | {bd:.0f} | {'*' if t in front else ''} |\n")
+        cols = ["scene", "technique", "size", "subpixel", "ms", "interior", "boundary",
+                "false_lit", "false_shadow", "count_hist", *work_keys, "note"]
+        fh.write("\n| " + " | ".join(cols) + " |\n|" + "---|" * len(cols) + "\n")
+        for r in rows:
+            fh.write("| " + " | ".join(str(r.get(k, "")) if k != "ms" else f"{r['ms']:.1f}"
+                                       for k in cols) + " |\n")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for t, (ms, er, _) in agg.items():
+        ax.scatter(ms, er + 1, marker="*" if t in front else "o", s=80)
+        ax.annotate(t, (ms, er + 1))
+    ax.set_yscale("log")
+    ax.set_xlabel("total time per frame over the grid (ms)")
+    ax.set_ylabel("interior misclassified pixels + 1")
+    ax.set_title("speed vs error (stars: Pareto front)")
+    fig.savefig(os.path.join(ns.out, "speed_vs_error.png"), dpi=100)
+    print(open(os.path.join(ns.out, "speed_vs_error.md")).read().split("\n\n")[0])
+    _ = np
+
+
+if __name__ == "__main__":
+    main()
