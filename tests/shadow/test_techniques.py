@@ -116,3 +116,119 @@ def test_cli_technique(tmp_path):
                         "shadowmap", "--option", "bogus=1", "-o", str(out)],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "bogus" in r.stderr
+
+
+def test_roettger_colour_channel_equals_alpha_channel():
+    sc = baseline()
+    a = render(sc, "roettger", channel="alpha")
+    c = render(sc, "roettger", channel="colour")
+    assert np.array_equal(a.lit, c.lit)
+
+
+def test_roettger_quick_halves_shadowed_pixels_of_the_full_scene():
+    """QuickNDirty: the scene once with every component, then x255/255 where lit and
+    x127/255 in shadow, with the VGX blend's rounding (docs/numeric_model.md)."""
+    sc = baseline()
+    q = render(sc, "roettger", application="quick")
+    full = api.render(sc, size=(W, H), mode="objects").colour[..., :3].astype(int)
+    lit = q.lit[0][..., None]
+    expect = np.where(lit, full, (full * 127 + 127) // 255)
+    assert np.array_equal(q.colour[..., :3], expect.astype(np.uint8))
+
+
+def test_roettger_has_no_stencil_planes_and_low_resolution_mask_is_blocky():
+    from vgxsim.gl import getgdesc  # noqa: F401  (the engine reads GD_BITS_STENCIL)
+    from vgxsim.shadow.program import Shadows
+
+    t = make("roettger", mask_scale=2)
+    frame = render(baseline(), t)
+    mask = frame.stencil[0][::-1]            # bottom row first, as counted
+    blocks = mask[: H // 2 * 2, : W // 2 * 2].reshape(H // 2, 2, W // 2, 2)
+    assert np.all(blocks == blocks[:, :1, :, :1])
+    prog = Shadows(baseline(), technique=make("roettger"))
+    assert prog.technique.name == "roettger"
+    with pytest.raises(TechniqueError, match="accumulation"):
+        api.render(baseline(), size=(W, H), soft=2, technique="roettger",
+                   technique_options={"channel": "colour"})
+
+
+def test_zfail_far_plane_needs_the_infinite_projection():
+    """H3: with the camera's finite far plane the extruded (w = 0) geometry is
+    clipped and the count is lost; with the far plane at infinity it is exact."""
+    from vgxsim.shadow.error import shadow_error
+    from vgxsim.shadow.raycast import raycast
+    from vgxsim.shadow.techniques.hard_cases import far_plane
+
+    sc = far_plane()
+    ref = raycast(sc, W, H, subpixel=True)
+    kw = dict(size=(W, H), technique="zfail", subpixel=True)
+    inf = api.render(sc, **kw)
+    fin = api.render(sc, technique_options={"infinite_far": False}, **kw)
+    assert shadow_error(inf.lit[0][::-1], ref, 0).interior == 0
+    assert shadow_error(fin.lit[0][::-1], ref, 0).interior > 0
+
+
+@pytest.mark.parametrize("technique", ["zfail", "zpplus", "auto"])
+def test_near_plane_sweep(technique):
+    """H2: sweep the near plane through the volume: z-fail, ZP+ and auto match the
+    reference at every distance, z-pass only while the plane misses the volume."""
+    from dataclasses import replace
+
+    from vgxsim.shadow.error import shadow_error
+    from vgxsim.shadow.raycast import nearest_hit, pixel_rays, raycast
+    from vgxsim.shadow.techniques.hard_cases import near_plane_cut
+
+    base = near_plane_cut()
+    for near in (0.3, 1.2, 2.2):
+        sc = replace(base, camera=replace(base.camera, near=near))
+        ref = raycast(sc, W, H, subpixel=True)
+        kw = dict(size=(W, H), subpixel=True)
+        robust = api.render(sc, technique=technique, **kw)
+        assert shadow_error(robust.lit[0][::-1], ref, 0).interior == 0, near
+        zpass = shadow_error(api.render(sc, technique="heidmann", **kw).lit[0][::-1], ref, 0)
+        # does the near rectangle reach into the volume?  segments from the near-plane
+        # point of every pixel to the light, against the casters
+        q, _ = pixel_rays(sc, W, H)
+        q = q.reshape(-1, 3)
+        tris = np.concatenate([o.vertices[o.triangles] for o in sc.casters])
+        idx, _ = nearest_hit(q, np.asarray(sc.lights[0].position) - q, tris)
+        assert (zpass.interior > 0) == bool(np.any(idx >= 0)), (near, zpass.interior)
+
+
+def test_soft_shadows_work_with_a_technique():
+    f = api.render(baseline(), size=(W, H), soft=2, technique="zfail")
+    assert f.colour.shape == (H, W, 4) and f.stencil.shape[0] == 0
+
+
+@pytest.mark.parametrize("technique", ["heidmann", "zfail", "zpplus", "counting",
+                                       "roettger"])
+def test_volume_cache_changes_no_plane(technique):
+    """Display objects for the volume geometry (VolumeCache): the same planes as
+    immediate mode, on the first frame and on a replayed second frame."""
+    from vgxsim.gl import finish, prefsize, read_pixels, swapbuffers, winclose, winopen
+    from vgxsim.shadow.program import Shadows
+
+    sc = api.load_scene(None)
+    got = []
+    for cache in (False, True):
+        planes = []
+        t = make(technique, cache=cache)
+        prog = Shadows(sc, signs="screen", technique=t,
+                       stencil_hook=lambda i, t=t, planes=planes: planes.append(
+                           np.array(t.read_mask(prog, i))))
+        prefsize(W, H)
+        gid = winopen("cache")
+        try:
+            prog.setup()
+            for _ in range(2):
+                prog.DrawFrame()
+                swapbuffers()
+                finish()
+            planes.append(read_pixels("front"))
+        finally:
+            prog.teardown()
+            winclose(gid)
+        got.append(planes)
+    assert len(got[0]) == len(got[1])
+    for a, b in zip(*got, strict=True):
+        assert np.array_equal(a, b)

@@ -223,6 +223,8 @@ class Shadows:
         for obj in self._geometry.values():
             delobj(obj)
         self._geometry.clear()
+        if self.technique is not None:
+            self.technique.teardown(self)
 
     # -- drawing ---------------------------------------------------------------------
     def draw_polygons(self, obj) -> None:

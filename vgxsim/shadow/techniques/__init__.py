@@ -59,10 +59,13 @@ def make(name: str | Technique, **options) -> Technique:
     if name not in TECHNIQUES:
         raise TechniqueError(f"unknown shadow technique {name!r} (known: "
                              f"{', '.join(TECHNIQUES)})")
+    cache = options.pop("cache", True)
     try:
-        return TECHNIQUES[name](**options)
+        tech = TECHNIQUES[name](**options)
     except TypeError as exc:
         raise TechniqueError(f"technique {name!r}: {exc}") from None
+    tech.cache = bool(cache)  # every technique: volume geometry in display objects
+    return tech
 
 
 __all__ = ["TECHNIQUES", "DirectionalLight", "Technique", "TechniqueError", "make"]

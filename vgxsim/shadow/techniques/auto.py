@@ -16,7 +16,7 @@ import numpy as np
 
 from vgxsim.gl import getsize
 
-from .base import ZPASS_OPS, draw_by_facing
+from .base import ZPASS_OPS
 from .volumes import near_rectangle, side_quads
 from .zfail import ZFail
 from .zpass import edge_pairs
@@ -75,7 +75,7 @@ class Auto(ZFail):
 
     def __init__(self, force: str | None = None, silhouettes: str = "adjacency",
                  cull: bool = False):
-        super().__init__(silhouettes=silhouettes, cull=cull)
+        super().__init__(silhouettes=silhouettes, cull=cull, infinite_far=True)
         if force not in (None, "zpass", "zfail"):
             raise ValueError(f"auto: force must be None, 'zpass' or 'zfail', not {force!r}")
         self.force = force
@@ -94,4 +94,4 @@ class Auto(ZFail):
             else:
                 quads = side_quads(mesh, edge_pairs(mesh, lt, "silhouette", self.silhouettes),
                                    lt, None)
-                draw_by_facing(quads, *ZPASS_OPS)
+                self.draw_by_facing(quads, *ZPASS_OPS)

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import ZFAIL_OPS, ZPASS_OPS, Technique, draw_by_facing
+from .base import ZFAIL_OPS, ZPASS_OPS, Technique
 from .volumes import extrude, facing, side_quads, signed_edge_counts
 
 
@@ -63,10 +63,10 @@ class Counting(Technique):
         ops = ZFAIL_OPS if self.zfail else ZPASS_OPS
         for mesh in self.casters(prog, lt, None):
             pairs, weight = signed_edge_counts(mesh, lt)
-            draw_by_facing(side_quads(mesh, pairs, lt, None), *ops, zfail=self.zfail,
+            self.draw_by_facing(side_quads(mesh, pairs, lt, None), *ops, zfail=self.zfail,
                            times=weight)
             if self.zfail:
                 near, far = every_polygon_caps(mesh, lt)
                 for polys in (near, far):
                     if len(polys):
-                        draw_by_facing(polys, *ops, zfail=True)
+                        self.draw_by_facing(polys, *ops, zfail=True)

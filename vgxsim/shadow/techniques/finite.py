@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import ZPASS_OPS, Technique, draw_by_facing
+from .base import ZPASS_OPS, Technique
 from .volumes import scene_box, side_quads
 from .zpass import SILHOUETTE_METHODS, edge_pairs
 
@@ -56,4 +56,4 @@ class Finite(Technique):
             length = exit_lengths(mesh.vertices, lt, lo, hi)
             quads = side_quads(mesh, edge_pairs(mesh, lt, "silhouette", self.silhouettes),
                                lt, length)
-            draw_by_facing(quads, *ZPASS_OPS)
+            self.draw_by_facing(quads, *ZPASS_OPS)

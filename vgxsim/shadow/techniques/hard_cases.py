@@ -200,6 +200,14 @@ def directional() -> Scene:
                  lights=(DirectionalLight("sun", (0.3, 1.0, 0.2), (1.0, 1.0, 1.0)),))
 
 
+def spot() -> Scene:
+    """A spot light (SPOTDIRECTION, SPOTLIGHT): its cone limits its light, not its
+    shadow, so the volumes are those of the point light at its position."""
+    lt = PointLight("spot", (0.5, 6.0, 1.0), (1.0, 1.0, 1.0), spot_direction=(0.0, -1.0, 0.0),
+                    spot=(2.0, 60.0))
+    return scene([floor(), cube()], lights=(lt,))
+
+
 def light_inside() -> Scene:
     """H13: the light inside a caster (every polygon faces away: all in shadow)."""
     c = make_box("shell", (1.0, 1.0, 1.0), position=(0.0, 2.0, 0.0), material=WHITE)
@@ -229,6 +237,7 @@ HARD_CASES: dict[str, Callable[[], Scene]] = {
     "behind_eye": behind_eye,
     "translated": translated,
     "directional": directional,
+    "spot": spot,
     "light_inside": light_inside,
     "thin_geometry": thin_geometry,
 }

@@ -93,7 +93,7 @@ from vgxsim.gl import (
 )
 from vgxsim.shadow.scene import MATL_DIFFSPEC, MATL_EMITAMBIENT, MATL_FULL
 
-from .base import Technique, TechniqueError, draw_polygons4
+from .base import Technique, TechniqueError
 from .volumes import side_quads
 from .zpass import SILHOUETTE_METHODS, edge_pairs
 
@@ -164,7 +164,7 @@ class Roettger(Technique):
         loadmatrix(np.eye(4).reshape(-1).tolist())
         blendfunction(sf, df)
         c4i(*rgba)
-        rectf(0, 0, w - 1, h - 1)
+        rectf(-0.5, -0.5, w - 0.5, h - 0.5)  # every pixel centre strictly inside
         popmatrix()
         prog.viewing()
         zbuffer(TRUE)
@@ -189,7 +189,7 @@ class Roettger(Technique):
             cull(TRUE)
             blendfunction(*factors)
             c4i(*rgba)
-            draw_polygons4(quads)
+            self.draw_polygons(quads)
             cull(FALSE)
         self.normalise(prog)
 
@@ -243,7 +243,7 @@ class Roettger(Technique):
         if self._low:
             w, h = getsize()
             wmpack(ALPHA_ONLY)
-            lrectwrite(0, 0, w - 1, h - 1, self._low[i].reshape(-1).tolist())
+            lrectwrite(0, 0, w - 1, h - 1, self._low[i].astype('<u4').tobytes())
             return
         self.count(prog, i)
 
@@ -310,6 +310,8 @@ class Roettger(Technique):
             acbuf(AC_CLEAR_ACCUMULATE if prog.nLights == 0 else AC_ACCUMULATE, 1.0)
         acbuf(AC_RETURN, 1.0)
         self.finish(prog)
+        if self._volume_cache is not None:
+            self._volume_cache.end_frame()
 
     def finish(self, prog) -> None:
         blendfunction(BF_ONE, BF_ZERO)

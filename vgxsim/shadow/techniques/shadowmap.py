@@ -176,7 +176,7 @@ class ShadowMap(Technique):
         w, h = getsize()
         words = np.where(lit, np.uint32(0xff000000), np.uint32(0)).astype(np.uint32)
         wmpack(ALPHA_ONLY)
-        lrectwrite(0, 0, w - 1, h - 1, words.reshape(-1).tolist())
+        lrectwrite(0, 0, w - 1, h - 1, words.astype('<u4').tobytes())
         wmpack(0xffffffff)
 
     def lit_pass(self, prog, i: int) -> None:

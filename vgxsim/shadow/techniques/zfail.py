@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import ZFAIL_OPS, Technique, draw_by_facing
+from .base import ZFAIL_OPS, Technique
 from .volumes import caps, side_quads
 from .zpass import SILHOUETTE_METHODS, edge_pairs
 
@@ -36,12 +36,17 @@ class ZFail(Technique):
     silhouettes : {'adjacency', 'toggle'}
     cull : bool
         Frustum culling of whole volumes (changes no stencil value; tested).
+    infinite_far : bool
+        False keeps the camera's finite far plane: the w = 0 vertices then lie beyond
+        it and are clipped, and the count is lost wherever a volume reaches past the
+        far plane (shadow_literature.md H3; kept to show the failure).
     """
 
     name = "zfail"
-    infinite_far = True
 
-    def __init__(self, silhouettes: str = "adjacency", cull: bool = False):
+    def __init__(self, silhouettes: str = "adjacency", cull: bool = False,
+                 infinite_far: bool = True):
+        self.infinite_far = bool(infinite_far)
         if silhouettes not in SILHOUETTE_METHODS:
             raise ValueError(f"zfail: silhouettes must be one of {SILHOUETTE_METHODS}")
         self.silhouettes = silhouettes
@@ -51,7 +56,7 @@ class ZFail(Technique):
         sides, near, dark = closed_volume(mesh, light, self.silhouettes)
         for polys in (sides, near, dark):
             if len(polys):
-                draw_by_facing(polys, *ZFAIL_OPS, zfail=True)
+                self.draw_by_facing(polys, *ZFAIL_OPS, zfail=True)
 
     def mark(self, prog, i: int) -> None:
         self.start_stencil(prog)

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import ZPASS_OPS, Technique, TechniqueError, draw_by_facing
+from .base import ZPASS_OPS, Technique, TechniqueError
 from .volumes import polygon_edges, side_quads, silhouettes_by_adjacency, silhouettes_by_toggle
 
 EDGE_SETS = ("silhouette", "all")
@@ -81,4 +81,4 @@ class ZPass(Technique):
 
     def mark(self, prog, i: int) -> None:
         self.start_stencil(prog)
-        draw_by_facing(self.faces(prog, i), *ZPASS_OPS)
+        self.draw_by_facing(self.faces(prog, i), *ZPASS_OPS)

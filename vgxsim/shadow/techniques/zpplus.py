@@ -41,7 +41,7 @@ from vgxsim.gl import (
     zbuffer,
 )
 
-from .base import ZPASS_OPS, Technique, TechniqueError, draw_by_facing, draw_polygons4
+from .base import ZPASS_OPS, Technique, TechniqueError
 from .volumes import caps, infinite_projection, near_rectangle, scene_box, side_quads
 from .zpass import SILHOUETTE_METHODS, edge_pairs
 
@@ -105,7 +105,7 @@ class ZPPlus(Technique):
         zbuffer(FALSE)
         stencil(TRUE, 0, SF_ALWAYS, 0xff, ST_INCR, ST_INCR, ST_INCR)
         for mesh in prog.scene.casters:
-            draw_polygons4(caps(mesh, light, "light"))
+            self.draw_polygons(caps(mesh, light, "light"))
         zbuffer(TRUE)
         popmatrix()
         mmode(MPROJECTION)
@@ -120,4 +120,4 @@ class ZPPlus(Technique):
         for mesh in prog.scene.casters:
             quads = side_quads(mesh, edge_pairs(mesh, lt, "silhouette", self.silhouettes),
                                lt, None)
-            draw_by_facing(quads, *ZPASS_OPS)
+            self.draw_by_facing(quads, *ZPASS_OPS)
