@@ -200,6 +200,11 @@ def test_soft_shadows_work_with_a_technique():
     assert f.colour.shape == (H, W, 4) and f.stencil.shape[0] == 0
 
 
+def reader(prog, planes):
+    """A stencil hook appending the technique's mask plane to ``planes``."""
+    return lambda i: planes.append(np.array(prog.technique.read_mask(prog, i)))
+
+
 @pytest.mark.parametrize("technique", ["heidmann", "zfail", "zpplus", "counting",
                                        "roettger"])
 def test_volume_cache_changes_no_plane(technique):
@@ -213,9 +218,8 @@ def test_volume_cache_changes_no_plane(technique):
     for cache in (False, True):
         planes = []
         t = make(technique, cache=cache)
-        prog = Shadows(sc, signs="screen", technique=t,
-                       stencil_hook=lambda i, t=t, planes=planes: planes.append(
-                           np.array(t.read_mask(prog, i))))
+        prog = Shadows(sc, signs="screen", technique=t)
+        prog.stencil_hook = reader(prog, planes)
         prefsize(W, H)
         gid = winopen("cache")
         try:
