@@ -97,3 +97,41 @@ def test_nested_volumes_beyond_255():
     err = shadow_error(frame.lit[0][::-1], ref, 0)
     assert err.false_lit_interior == 0
     assert frame.stencil[0].max() == 255  # saturated, as documented
+
+
+SNAPPED = ("baseline", "thin_geometry", "directional", "translated", "spot")
+
+
+@pytest.mark.parametrize("technique", ["heidmann", "zfail", "zpplus", "counting", "auto"])
+@pytest.mark.parametrize("name", SNAPPED)
+def test_snapped_vertices_against_the_snapped_reference(name, technique):
+    """subpixel(FALSE), the IRIS default: vertices snap to pixel centres, and the
+    reference snaps the same vertices (raycast(subpixel=False)); thin geometry (a rod
+    about a pixel thick) included."""
+    sc = HARD_CASES[name]()
+    ref = raycast(sc, W, H, subpixel=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", api.ViewpointInShadowWarning)
+        frame = api.render(sc, size=(W, H), technique=technique, subpixel=False)
+    assert shadow_error(frame.lit[0][::-1], ref, 0).interior == 0
+
+
+def test_snapped_default_scene_zfail_exact_zpass_stray_pixels_counted():
+    """The default scene under subpixel(FALSE): z-fail has no wrong pixel away from
+    the boundaries; z-pass (the 1991 code's counting, also ZP+ and counting, which
+    count in front of the surface) leaves a few stray pixels 3 to 5 pixels from any
+    boundary (5 at 96x80 when measured) -- the README's "stray pixels" bug, counted
+    here: present, and stray (well under 1 % of the image), not an area."""
+    from vgxsim.shadow.error import mask_error
+
+    sc = api.load_scene(None)
+    ref = raycast(sc, W, H, subpixel=False)
+    zf = api.render(sc, size=(W, H), technique="zfail", subpixel=False)
+    zp = api.render(sc, size=(W, H), technique="heidmann", subpixel=False)
+    stray = 0
+    for li in range(len(sc.lights)):
+        assert shadow_error(zf.lit[li][::-1], ref, li).interior == 0
+        err = mask_error(zp.lit[li][::-1], ref.lit[..., li], ref.hit)
+        stray += err.interior
+        assert err.interior < err.compared // 100
+    assert stray > 0  # the failure is there and counted, not hidden
