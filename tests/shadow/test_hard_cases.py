@@ -120,8 +120,9 @@ def test_snapped_default_scene_zfail_within_two_pixels_zpass_stray_pixels_counte
     """The default scene under subpixel(FALSE): z-fail has no wrong pixel farther than
     two pixels from a boundary (a snapped silhouette vertex turns its whole shadow
     face, whose far end at w = 0 is not snapped, so far from the caster the shadow
-    edge moves by a little more than the one pixel the metric allows); z-pass (the 1991 code's counting, also ZP+ and counting, which
-    count in front of the surface) leaves a few stray pixels 3 to 5 pixels from any
+    edge moves by a little more than the one pixel the metric allows); z-pass (the
+    1991 code's counting, also ZP+ and counting, which count in front of the
+    surface) leaves a few stray pixels 3 to 5 pixels from any
     boundary (5 at 96x80 when measured) -- the README's "stray pixels" bug, counted
     here: present, and stray (well under 1 % of the image), not an area."""
     from vgxsim.shadow.error import mask_error
