@@ -236,3 +236,14 @@ def test_volume_cache_changes_no_plane(technique):
     assert len(got[0]) == len(got[1])
     for a, b in zip(*got, strict=True):
         assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("start", [1, 8, 64])
+def test_roettger_start_value_gives_the_same_mask_on_shallow_nesting(start):
+    """Any start value is exact while no more than 8 - log2(start) volumes nest
+    (one cube here: 1)."""
+    sc = baseline()
+    z = render(sc, "zfail")
+    r = render(sc, "roettger", start=start)
+    seen = z.depth < z.depth.max()
+    assert np.array_equal(r.lit[:, seen], z.lit[:, seen])

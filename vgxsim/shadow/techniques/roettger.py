@@ -17,15 +17,18 @@ With the VGX's blend (docs/numeric_model.md: ``out = min(255, (s fs + d fd + 127
 * /2: ``blendfunction(BF_ZERO, BF_SA)`` with source alpha 128 (or ``(BF_ZERO,
   BF_SC)`` with source colour 128): ``(128 d + 127) // 255``, exactly d / 2 for
   d = 2 .. 128, and 255 -> 128 (so a clamped 255 still halves like 256);
-* the mask starts at 1 ("initialize all pixels with color value 1/4" in the talk; 1
-  here leaves the most room): counts 0 .. 8 are exact (1 .. 128, 255); front faces
-  are all drawn before back faces (Heidmann's order), so a pixel's running count
-  never goes below its final count; a final count below 0 (eye in shadow) reads 1 as
-  lit -- the z-pass failure, unchanged.
+* the mask starts at ``start`` = 2^s (the talk: "initialize all pixels with color
+  value 1/4", i.e. 64): running counts 0 .. 8 - s are exact (2^s .. 128, then 255,
+  which halves like 256); front faces are all drawn before back faces (Heidmann's
+  order), so a pixel's running count never goes below its final count.  A final
+  count below 0 (eye in shadow) halves toward 1 and reads as shadow, except that
+  1 / 2 rounds back to 1: with ``start=1`` a count of -1 reads lit.
 
-Normalisation ("Shadow Mask Normalization": x2, invert, x2): seven doublings take 1
-to 128 and every count >= 1 to 255; invert (``BF_MDA``/``BF_MDC``, ``c = 1 - c``)
-gives 127 and 0; two doublings give 255 (lit) and 0 (shadow).
+Normalisation ("Shadow Mask Normalization": x2, invert, x2): 7 - s doublings take
+the start value to 128 and every count >= 1 to 255; invert (``BF_MDA``/``BF_MDC``,
+``c = 1 - c``) gives 127 and 0; two doublings give 255 (lit) and 0 (shadow).  So
+``start`` trades nesting depth for passes: 1 allows 8 nested volumes and costs 10
+window-sized blends per light, 64 (Roettger's) allows 2 and costs 3.
 
 Application ("Shadow Mask Application"):
 
@@ -99,7 +102,6 @@ from .zpass import SILHOUETTE_METHODS, edge_pairs
 
 CHANNELS = ("alpha", "colour")
 APPLICATIONS = ("black", "ambient", "quick")
-MASK_START = 1
 ALPHA_ONLY = 0xff000000
 RGB_ONLY = 0x00ffffff
 
@@ -113,13 +115,15 @@ class Roettger(Technique):
     application : {'black', 'ambient', 'quick'}
     mask_scale : int
         1: full resolution; s > 1: the mask at 1/s resolution (alpha only).
+    start : {1, 2, 4, 8, 16, 32, 64}
+        The mask's start value (see the module docstring).
     """
 
     name = "roettger"
     infinite_far = True
 
     def __init__(self, channel: str = "alpha", application: str = "ambient",
-                 mask_scale: int = 1, silhouettes: str = "adjacency"):
+                 mask_scale: int = 1, silhouettes: str = "adjacency", start: int = 1):
         if channel not in CHANNELS:
             raise TechniqueError(f"roettger: channel must be one of {CHANNELS}")
         if application not in APPLICATIONS:
@@ -131,6 +135,9 @@ class Roettger(Technique):
             raise TechniqueError(f"roettger: mask_scale must be >= 1, not {mask_scale}")
         if silhouettes not in SILHOUETTE_METHODS:
             raise TechniqueError(f"roettger: silhouettes must be one of {SILHOUETTE_METHODS}")
+        if start not in (1, 2, 4, 8, 16, 32, 64):
+            raise TechniqueError(f"roettger: start must be a power of two 1..64, not {start}")
+        self.start = int(start)
         self.channel = channel
         self.application = application
         self.mask_scale = int(mask_scale)
@@ -179,7 +186,7 @@ class Roettger(Technique):
         double, halve, _, mask = self._factors()
         zwritemask(0x0)
         wmpack(mask)
-        self._fill(prog, BF_ONE, BF_ZERO, (MASK_START,) * 4)
+        self._fill(prog, BF_ONE, BF_ZERO, (self.start,) * 4)
         lt = self.light(prog, i)
         quads = [side_quads(m, edge_pairs(m, lt, "silhouette", self.silhouettes), lt, None)
                  for m in prog.scene.casters]
@@ -194,10 +201,11 @@ class Roettger(Technique):
         self.normalise(prog)
 
     def normalise(self, prog) -> None:
-        """Mask to 255 (lit) / 0 (shadow): x2 seven times, invert, x2 twice."""
+        """Mask to 255 (lit) / 0 (shadow): x2 until the start value is 128, invert, x2
+        twice."""
         double, _, invert, mask = self._factors()
         wmpack(mask)
-        for _ in range(7):
+        for _ in range(7 - self.start.bit_length() + 1):
             self._fill(prog, *double, (255, 255, 255, 255))
         self._fill(prog, *invert, (255, 255, 255, 255))
         for _ in range(2):
