@@ -35,10 +35,16 @@ from vgxsim.shadow.techniques.hard_cases import HARD_CASES
 
 
 def variants(quick: bool):
+    """(technique, options, label): every technique, the shadow map at several
+    resolutions, Roettger's start value and low-resolution mask."""
     for name in TECHNIQUES:
         if name == "shadowmap":
             for n in ((256, 1024) if quick else (256, 512, 1024, 2048)):
                 yield name, {"size": n}, f"shadowmap{n}"
+        elif name == "roettger":
+            yield name, {}, name
+            yield name, {"start": 64}, "roettger_start64"
+            yield name, {"mask_scale": 2}, "roettger_half_mask"
         else:
             yield name, {}, name
 
@@ -99,19 +105,21 @@ def main() -> None:
     from tqdm import tqdm
 
     os.makedirs(ns.out, exist_ok=True)
+    # (scene name, scene, sizes): the shipped scenes at larger sizes, the hard cases small
     if ns.quick:
-        scenes = {"cubes": api.load_scene(None)}
-        scenes.update({k: HARD_CASES[k]() for k in ("eye_in_shadow", "open_box")})
-        sizes, modes, repeats = [(96, 80), (320, 256)], [True], 1
+        grid = [("cubes", api.load_scene(None), [(96, 80), (320, 256)])]
+        grid += [(k, HARD_CASES[k](), [(96, 80)]) for k in ("eye_in_shadow", "open_box")]
+        modes, repeats = [True], 1
     else:
-        scenes = {n: api.load_scene(n) for n in ("cubes", "balls", "teapot")}
-        scenes.update({k: b() for k, b in HARD_CASES.items()})
-        sizes, modes, repeats = [(96, 80), (320, 256), (640, 512)], [False, True], 3
+        grid = [(n, api.load_scene(None if n == "cubes" else n), [(320, 256), (640, 512)])
+                for n in ("cubes", "balls", "teapot")]
+        grid += [(k, b(), [(96, 80)]) for k, b in HARD_CASES.items()]
+        modes, repeats = [False, True], 3
     vs = list(variants(ns.quick))
     rows = []
-    bar = tqdm(total=len(scenes) * len(sizes) * len(modes) * len(vs), unit="frame",
+    bar = tqdm(total=sum(len(g[2]) for g in grid) * len(modes) * len(vs), unit="frame",
                desc="speed vs error")
-    for sname, sc in scenes.items():
+    for sname, sc, sizes in grid:
         for size in sizes:
             for sp in modes:
                 ref = raycast(sc, *size, subpixel=sp)

@@ -141,3 +141,22 @@ def test_snapped_default_scene_zfail_within_two_pixels_zpass_stray_pixels_counte
         stray += err.interior
         assert err.interior < err.compared // 100
     assert stray > 0  # the failure is there and counted, not hidden
+
+
+def test_teapot_open_mesh_counting_against_the_reference():
+    """H5 on the shipped teapot (open: boundary edges at the lid and spout): the 1991
+    silhouette z-pass and the closed-mesh z-fail misclassify whole regions, signed
+    edge counting leaves a few pixels (measured 3 at 96x80 over both lights, lines of
+    cracks where the tessellation has T-junctions, H6): reported, not hidden."""
+    sc = api.load_scene("teapot")
+    ref = raycast(sc, W, H, subpixel=True)
+
+    def interior(technique):
+        frame = render(sc, technique)
+        return sum(shadow_error(frame.lit[i][::-1], ref, i).interior
+                   for i in range(len(sc.lights)))
+
+    counting, heidmann, zfail = interior("counting"), interior("heidmann"), interior("zfail")
+    assert counting * 5 < heidmann, (counting, heidmann)
+    assert counting * 50 < zfail, (counting, zfail)
+    assert counting < 10, counting
