@@ -11,12 +11,27 @@ import numpy as np
 import pytest
 
 from vgxsim.shadow import api
-from vgxsim.shadow.error import near_boundary, shadow_error
+from vgxsim.shadow.error import mask_error, near_boundary, shadow_error
 from vgxsim.shadow.raycast import raycast
 from vgxsim.shadow.techniques import TECHNIQUES, TechniqueError
 from vgxsim.shadow.techniques.hard_cases import EXPECTED_FAILURES, HARD_CASES
 
 W, H = 96, 80
+
+
+def edge_on(sc, ref, light: int = 0) -> np.ndarray:
+    """(H, W) bool: the visible polygon's plane holds the light exactly (N . L = 0).
+    Such a face is in its own shadow by the facing rule and lit by the reference's
+    segment, which runs inside its plane; either answer is right (shadow_literature.md
+    H4: errors allowed on the grazing face's own footprint), so it is not compared."""
+    from vgxsim.shadow.raycast import light_position
+
+    tris, _ = sc.triangles()
+    n = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
+    lp = light_position(sc.lights[light])
+    side = np.einsum("ij,ij->i", n, lp[:3][None, :] - lp[3] * tris[:, 0])
+    flag = np.append(side == 0.0, False)
+    return flag[ref.triangle]
 
 
 @functools.cache
@@ -41,7 +56,7 @@ def test_against_reference(name, technique):
             render(sc, technique)
         return
     frame = render(sc, technique)
-    err = shadow_error(frame.lit[0][::-1], ref, 0)
+    err = mask_error(frame.lit[0][::-1], ref.lit[..., 0], ref.hit & ~edge_on(sc, ref))
     if why is not None:
         # the failure is real and counted, not hidden (reported in the message)
         assert err.interior > 0, f"{name}/{technique}: expected to fail ({why})"

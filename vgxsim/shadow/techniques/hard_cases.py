@@ -146,16 +146,14 @@ def t_junction() -> Scene:
 
 
 def coplanar_receiver() -> Scene:
-    """H7: a wall standing exactly in the plane through the light and a cube edge."""
+    """H7: the light straight above the cube's side face x = 0.5, so that face is
+    edge-on to it and the shadow face from its top edge lies in the plane x = 0.5 --
+    which is also the face of a wall standing below (a receiver coplanar with a
+    volume face)."""
     c = make_box("cube", (1.0, 1.0, 1.0), position=(0.0, 1.5, 0.0), material=WHITE)
-    lp = np.array([0.0, 6.0, 0.0])
-    edge = c.vertices[(c.vertices[:, 0] > 0) & (c.vertices[:, 1] < 1.5)][:2]
-    n = np.cross(edge[1] - edge[0], lp - edge[0])
-    n /= np.linalg.norm(n)
-    # a thin wall whose face contains the plane of light and edge: x = 0.5 here
     wall = make_box("wall", (0.1, 1.0, 3.0), position=(0.55, 0.5, 0.0), material=GREY,
                     casts=False)
-    return scene([floor(), c, wall], lights=(PointLight("light", tuple(lp), (1, 1, 1)),))
+    return scene([floor(), c, wall], lights=(PointLight("light", (0.5, 6.0, 0.0), (1, 1, 1)),))
 
 
 def nested_volumes(count: int = 300) -> Scene:

@@ -20,7 +20,13 @@ from __future__ import annotations
 import numpy as np
 
 from .base import ZPASS_OPS, Technique, TechniqueError
-from .volumes import polygon_edges, side_quads, silhouettes_by_adjacency, silhouettes_by_toggle
+from .volumes import (
+    facing,
+    polygon_edges,
+    side_quads,
+    silhouettes_by_adjacency,
+    silhouettes_by_toggle,
+)
 
 EDGE_SETS = ("silhouette", "all")
 SILHOUETTE_METHODS = ("adjacency", "toggle")
@@ -30,8 +36,6 @@ def edge_pairs(mesh, light: np.ndarray, edges: str, silhouettes: str) -> np.ndar
     """(S, 2) vertex pairs whose shadow faces bound the mesh's volume (see volumes)."""
     if edges == "all":
         a, b = polygon_edges(mesh)
-        from .volumes import facing
-
         fac = np.repeat(facing(mesh, light), mesh.polygons.shape[1])
         return np.stack([np.where(fac, a, b), np.where(fac, b, a)], axis=1)
     if silhouettes == "toggle":
