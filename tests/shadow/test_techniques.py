@@ -247,3 +247,97 @@ def test_roettger_start_value_gives_the_same_mask_on_shallow_nesting(start):
     r = render(sc, "roettger", start=start)
     seen = z.depth < z.depth.max()
     assert np.array_equal(r.lit[:, seen], z.lit[:, seen])
+
+
+def test_points_at_infinity_land_on_the_infinite_far_plane():
+    """H3 (a) and H10: under the infinite projection a vertex (x, y, z, 0) in front
+    of the eye has z_clip == w_clip exactly, and a triangle of such vertices is
+    rasterized at depth GD_ZMAX (kept by the clipper's closed far plane); one whose
+    vertices point behind the eye is clipped away without error."""
+    from vgxsim.gl import (  # noqa: I001
+        GD_ZMAX,
+        MPROJECTION,
+        MVIEWING,
+        TRUE,
+        ZF_ALWAYS,
+        RGBmode,
+        bgnpolygon,
+        czclear,
+        endpolygon,
+        gconfig,
+        getgdesc,
+        loadmatrix,
+        mmode,
+        prefsize,
+        read_pixels,
+        swapbuffers,
+        v4f,
+        winclose,
+        winopen,
+        zbuffer,
+        zfunction,
+    )
+    from vgxsim.shadow.techniques.volumes import infinite_projection
+
+    sc = baseline()
+    p = infinite_projection(sc.camera, W / H)
+    mv = sc.camera.modelview()
+    rng = np.random.default_rng(7)
+    d = rng.normal(size=(200, 3))
+    clip = np.concatenate([d, np.zeros((200, 1))], axis=1) @ mv @ p
+    front = clip[:, 3] > 0
+    assert np.all(clip[front, 2] == clip[front, 3])
+    prefsize(W, H)
+    gid = winopen("inf")
+    try:
+        RGBmode()
+        gconfig()
+        zbuffer(TRUE)
+        zfunction(ZF_ALWAYS)
+        mmode(MPROJECTION)
+        loadmatrix(p.reshape(-1).tolist())
+        mmode(MVIEWING)
+        loadmatrix(mv.reshape(-1).tolist())
+        czclear(0, 0)
+        ahead = np.asarray(sc.camera.target) - np.asarray(sc.camera.eye)
+        side = np.cross(ahead, [0.0, 1.0, 0.0])
+        for tri in ([ahead - side, ahead + side, ahead + [0, 1.0, 0]],
+                    [-ahead - side, -ahead + side, -ahead + [0, 1.0, 0]]):
+            bgnpolygon()
+            for v in tri:
+                v4f((*v, 0.0))
+            endpolygon()
+        swapbuffers()
+        z = read_pixels("front", "z")
+    finally:
+        winclose(gid)
+    drawn = z != 0
+    assert drawn.any()
+    assert np.all(z[drawn] == getgdesc(GD_ZMAX))
+
+
+def test_roettger_black_leaves_shadows_black():
+    sc = baseline()
+    f = render(sc, "roettger", application="black")
+    seen = f.depth < f.depth.max()
+    shadow = seen & ~f.lit[0]
+    assert shadow.any()
+    assert np.all(f.colour[shadow][:, :3] == 0)
+    assert f.colour[seen & f.lit[0]][:, :3].max() > 0
+
+
+def test_shadowmap_resolution_and_bias_parameters():
+    from vgxsim.shadow.error import shadow_error
+    from vgxsim.shadow.raycast import raycast
+
+    sc = baseline()
+    ref = raycast(sc, W, H, subpixel=True)
+
+    def wrong(**opts):
+        f = api.render(sc, size=(W, H), technique="shadowmap", technique_options=opts,
+                       subpixel=True)
+        return shadow_error(f.lit[0][::-1], ref, 0).misclassified
+
+    assert wrong(size=2048) < wrong(size=32)
+    # no bias: the casters' lit faces shadow themselves (acne)
+    assert wrong(size=512, bias=0.0) > wrong(size=512, bias=0.05)
