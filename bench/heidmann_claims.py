@@ -12,7 +12,8 @@
   accumulated in acbuf at 1280 x 1024, seconds.
 * Kolivand-Sunar Table 1 ("Compare FPS"): frames per second without shadows
   (``mode='objects'``) and with each technique, on a torus and on a sphere over a
-  floor.
+  floor; and their silhouette edge set beside edge adjacency (same edges, tested),
+  milliseconds per light.
 
 Medians of several runs on a shared 2-core machine: noisy; compare ratios within a
 run.  Targets (issue 9): >= 60 frames/s hard shadows at 1280 x 1024, z-fail <= 1.3x
@@ -114,6 +115,25 @@ def main() -> None:
         for tech in STENCIL_TECHNIQUES:
             row.append(f"{1 / frame_loop(scene, ks_size, tech, repeats):.1f}")
         lines.append(f"| {name} | " + " | ".join(row) + " |")
+    lines += ["", "## Silhouette detection: edge adjacency vs the Kolivand-Sunar edge set", "",
+              "| scene | polygons | adjacency ms | toggle set ms | ratio |", "|---|---|---|---|---|"]
+    from vgxsim.shadow.techniques.volumes import (
+        light4,
+        silhouettes_by_adjacency,
+        silhouettes_by_toggle,
+    )
+
+    tests = {"cubes": api.load_scene(None), **torus_and_sphere(),
+             "teapot": api.load_scene("teapot"), "dense": api.load_scene("dense")}
+    for name, scene in tests.items():
+        lt = light4(scene.lights[0])
+        polys = sum(len(m.polygons) for m in scene.casters)
+        adj = median(lambda sc=scene: [silhouettes_by_adjacency(m, lt) for m in sc.casters],
+                     repeats)
+        tog = median(lambda sc=scene: [silhouettes_by_toggle(m, lt) for m in sc.casters],
+                     repeats)
+        lines.append(f"| {name} | {polys} | {1000 * adj:.2f} | {1000 * tog:.2f} | "
+                     f"{tog / adj:.1f} |")
     text = "\n".join(lines)
     print(text)
     if ns.out:

@@ -100,6 +100,9 @@ def measure(scene, tech, opts, size, subpixel, repeats):
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="a small grid")
+    ap.add_argument("--large", action="store_true",
+                    help="the shipped scenes at 640x512 too (slow: an hour or more on 2 "
+                         "busy cores)")
     ap.add_argument("--out", default="bench/out", help="output folder")
     ns = ap.parse_args()
     from tqdm import tqdm
@@ -111,7 +114,8 @@ def main() -> None:
         grid += [(k, HARD_CASES[k](), [(96, 80)]) for k in ("eye_in_shadow", "open_box")]
         modes, repeats = [True], 1
     else:
-        grid = [(n, api.load_scene(None if n == "cubes" else n), [(320, 256), (640, 512)])
+        sizes = [(320, 256), (640, 512)] if ns.large else [(320, 256)]
+        grid = [(n, api.load_scene(None if n == "cubes" else n), sizes)
                 for n in ("cubes", "balls", "teapot")]
         grid += [(k, b(), [(96, 80)]) for k, b in HARD_CASES.items()]
         modes, repeats = [False, True], 3
