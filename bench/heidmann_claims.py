@@ -32,6 +32,11 @@ import numpy as np
 from vgxsim.shadow import api
 from vgxsim.shadow.program import Shadows
 from vgxsim.shadow.techniques import make
+from vgxsim.shadow.techniques.volumes import (
+    light4,
+    silhouettes_by_adjacency,
+    silhouettes_by_toggle,
+)
 
 STENCIL_TECHNIQUES = ("heidmann", "zfail", "auto", "zpplus", "counting", "finite",
                       "roettger", "shadowmap")
@@ -115,22 +120,18 @@ def main() -> None:
         for tech in STENCIL_TECHNIQUES:
             row.append(f"{1 / frame_loop(scene, ks_size, tech, repeats):.1f}")
         lines.append(f"| {name} | " + " | ".join(row) + " |")
-    lines += ["", "## Silhouette detection: edge adjacency vs the Kolivand-Sunar edge set", "",
-              "| scene | polygons | adjacency ms | toggle set ms | ratio |", "|---|---|---|---|---|"]
-    from vgxsim.shadow.techniques.volumes import (
-        light4,
-        silhouettes_by_adjacency,
-        silhouettes_by_toggle,
-    )
+    lines += ["", "## Silhouette detection: edge adjacency vs the Kolivand-Sunar edge set",
+              "", "| scene | polygons | adjacency ms | toggle set ms | ratio |",
+              "|---|---|---|---|---|"]
 
     tests = {"cubes": api.load_scene(None), **torus_and_sphere(),
              "teapot": api.load_scene("teapot"), "dense": api.load_scene("dense")}
     for name, scene in tests.items():
         lt = light4(scene.lights[0])
         polys = sum(len(m.polygons) for m in scene.casters)
-        adj = median(lambda sc=scene: [silhouettes_by_adjacency(m, lt) for m in sc.casters],
+        adj = median(lambda sc=scene, lt=lt: [silhouettes_by_adjacency(m, lt) for m in sc.casters],
                      repeats)
-        tog = median(lambda sc=scene: [silhouettes_by_toggle(m, lt) for m in sc.casters],
+        tog = median(lambda sc=scene, lt=lt: [silhouettes_by_toggle(m, lt) for m in sc.casters],
                      repeats)
         lines.append(f"| {name} | {polys} | {1000 * adj:.2f} | {1000 * tog:.2f} | "
                      f"{tog / adj:.1f} |")
