@@ -21,8 +21,16 @@ shadowmap   shadow maps, resolution and bias (Williams)            not exact
 =========== ====================================================== ========================
 
 Point, spot (a point light whose cone limits only its light) and directional
-(w = 0, :class:`DirectionalLight`) lights work with every technique, except that
-``shadowmap`` refuses a point light inside the scene's bounding sphere.
+(w = 0, :class:`DirectionalLight`) lights work with every technique (tested on the
+hard cases 'directional' and 'spot'), except that ``shadowmap`` refuses a point light
+inside the casters' bounding sphere (one perspective map cannot see all round it)
+and ``zpplus`` a light exactly on the camera's near plane (no projection from it onto
+that plane); both raise :class:`TechniqueError`.
+
+Every technique takes ``cache=False`` (:class:`.base.VolumeCache`: volume geometry in
+display objects from frame to frame; off, the same planes, slower).  Scenes for the
+hard cases of shared/reference/shadow_literature.md section 2 are in
+:mod:`.hard_cases`.
 """
 
 from __future__ import annotations
