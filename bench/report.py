@@ -13,7 +13,11 @@ Everything is measured side by side in one run and medians are quoted:
   process (llvmpipe reads the variable once);
 * cold start (empty Numba cache) and warm start to the first image, in fresh
   processes;
-* the Heidmann 1991 shadow frame, when the example is installed.
+* the Heidmann 1991 shadow frame, when the example is installed;
+* a dense shadow scene (bench/dense_scene.py: 20 spheres over a floor, two lights,
+  about 42 k triangles) through the library path, beside Mesa llvmpipe;
+* the work counters (CommandBatch.work()) of each workload, and the time of the
+  shadow frames with exact work skipping switched off, measured beside.
 """
 
 from __future__ import annotations
@@ -32,7 +36,10 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
+import dense_scene  # noqa: E402
 import scenes  # noqa: E402
+
+from vgxsim.batch import CommandBatch  # noqa: E402
 
 
 def median_time(run, rounds: int) -> float:
@@ -45,15 +52,53 @@ def median_time(run, rounds: int) -> float:
     return float(np.median(ts))
 
 
-def vgxsim_rates(rounds: int) -> dict:
+def set_skipping(on: bool) -> None:
+    """Exact work skipping on every batch (kernels/tiles.py switches)."""
+    CommandBatch.skip_tiles = on
+    CommandBatch.cover_blocks = on
+
+
+def vgxsim_rates(rounds: int) -> tuple[dict, dict]:
     out = {}
+    work = {}
     for threads in (1, 2):
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
-        for name in ("zstencil_fill", "colour_blend_fill", "small_triangles",
-                     "touch_zstencil_run", "touch_colour_run"):
+        for name in ("zstencil_fill", "zstencil_hidden_fill", "colour_blend_fill",
+                     "small_triangles", "touch_zstencil_run", "touch_colour_run"):
             run, units = getattr(scenes, name)()
             out[(name, threads)] = (median_time(run, rounds), units)
+            batch = getattr(run, "batch", None)
+            if batch is not None and threads == 1:
+                batch.reset_counters()
+                run()
+                work[name] = batch.work()
     numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    return out, work
+
+
+def dense_rates(rounds: int, mesa: bool) -> dict:
+    """The dense scene on vgxsim (1 and 2 threads, skipping on and off) and Mesa."""
+    passes, ntri, nvol = dense_scene.build()
+    run, batch = dense_scene.vgxsim_frame(passes)
+    out = {"triangles": ntri, "volume_triangles": nvol}
+    for threads in (1, 2):
+        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+        for on in (True, False):
+            set_skipping(on)
+            out[f"vgxsim{threads}" + ("" if on else "_noskip")] = median_time(run, rounds)
+    set_skipping(True)
+    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    batch.reset_counters()
+    run()
+    out["work"] = batch.work()
+    if mesa:
+        for threads in (1, 2):
+            proc = subprocess.run([sys.executable, os.path.join(HERE, "dense_scene.py"),
+                                   str(threads)], capture_output=True, text=True)
+            try:
+                out[f"mesa{threads}"] = json.loads(proc.stdout.strip().splitlines()[-1])["frame"]
+            except (IndexError, KeyError, json.JSONDecodeError):
+                out[f"mesa{threads}"] = None
     return out
 
 
@@ -74,7 +119,7 @@ def mesa_rates() -> dict:
 FIRST_IMAGE = r"""
 import time, sys
 t0 = float(sys.argv[1])
-from vgxsim.state.context import Context
+from vgxsim.pipeline.context import Context
 from vgxsim.geometry.transform import orthographic
 ctx = Context(320, 256, stencil=8)
 ctx.matrices.load_projection(orthographic(-0.5, 319.5, -0.5, 255.5, -1, 1))
@@ -102,15 +147,29 @@ def start_times() -> tuple[float, float]:
 def heidmann_frame(rounds: int) -> dict | None:
     try:
         from vgxsim.examples import heidmann1991
+        from vgxsim.gl._core import current
     except ImportError:
         return None
     out = {}
+    work = {}
+
+    def hook(i):
+        ctx = current("bench")
+        ctx.flush()
+        work.update(ctx.batch.work())
+
+    def frame(**kw):
+        return heidmann1991.render(1280, 1024, mode="shadows", edges="silhouette", **kw)
+
     for threads in (1, 2):
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
-        t = median_time(lambda: heidmann1991.render(1280, 1024, mode="shadows",
-                                                    edges="silhouette"), rounds)
-        out[threads] = t
+        for on in (True, False):
+            set_skipping(on)
+            out[threads if on else f"{threads}_noskip"] = median_time(frame, rounds)
+    set_skipping(True)
     numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    frame(stencil_hook=hook)
+    out["work"] = dict(work)
     return out
 
 
@@ -121,10 +180,11 @@ def main(argv=None) -> int:
     ap.add_argument("--json", help="also write the raw numbers here")
     args = ap.parse_args(argv)
     rounds = 3 if args.quick else 7
-    rates = vgxsim_rates(rounds)
+    rates, work = vgxsim_rates(rounds)
     mesa = {} if args.no_mesa else mesa_rates()
     cold, warm = start_times()
     frame = heidmann_frame(rounds)
+    dense = dense_rates(rounds, not args.no_mesa)
 
     def rate(name, threads):
         t, units = rates[(name, threads)]
@@ -132,14 +192,16 @@ def main(argv=None) -> int:
 
     print(f"vgxsim benchmark (medians of {rounds}; 1280x1024; machine: {os.cpu_count()} CPUs)")
     print()
-    hdr = f"{'workload':24s} {'1 thread':>12s} {'2 threads':>12s} {'scaling':>8s}"
+    hdr = f"{'workload':28s} {'1 thread':>12s} {'2 threads':>12s} {'scaling':>8s}"
     hdr += f" {'touch ratio':>12s} {'Mesa 1T':>12s} {'Mesa 2T':>12s} {'vs Mesa 2T':>10s}"
     print(hdr)
-    touch = {"zstencil_fill": "touch_zstencil_run", "colour_blend_fill": "touch_colour_run"}
-    units = {"zstencil_fill": "Mfrag/s", "colour_blend_fill": "Mfrag/s",
-             "small_triangles": "Mtri/s"}
+    touch = {"zstencil_fill": "touch_zstencil_run", "zstencil_hidden_fill": "touch_zstencil_run",
+             "colour_blend_fill": "touch_colour_run"}
+    units = {"zstencil_fill": "Mfrag/s", "zstencil_hidden_fill": "Mfrag/s",
+             "colour_blend_fill": "Mfrag/s", "small_triangles": "Mtri/s"}
     raw = {"vgxsim": {f"{k[0]}@{k[1]}": v for k, v in rates.items()}, "mesa": mesa}
-    for name in ("zstencil_fill", "colour_blend_fill", "small_triangles"):
+    for name in ("zstencil_fill", "zstencil_hidden_fill", "colour_blend_fill",
+                 "small_triangles"):
         r1, r2 = rate(name, 1) / 1e6, rate(name, 2) / 1e6
         ratio = f"{rate(name, 1) / rate(touch[name], 1):.3f}" if name in touch else "-"
         m1 = m2 = vs = "-"
@@ -150,7 +212,7 @@ def main(argv=None) -> int:
             t, u = mesa[2][name]
             m2 = f"{u / t / 1e6:.1f}"
             vs = f"{r2 / (u / t / 1e6):.2f}x"
-        print(f"{name + ' (' + units[name] + ')':24s} {r1:12.1f} {r2:12.1f} {r2 / r1:7.2f}x"
+        print(f"{name + ' (' + units[name] + ')':28s} {r1:12.1f} {r2:12.1f} {r2 / r1:7.2f}x"
               f" {ratio:>12s} {m1:>12s} {m2:>12s} {vs:>10s}")
     if mesa.get(1, {}).get("renderer"):
         print(f"\nMesa renderer: {mesa[1]['renderer']}")
@@ -159,9 +221,29 @@ def main(argv=None) -> int:
     print(f"\ncold start to first image (empty Numba cache): {cold:.2f} s")
     print(f"warm start to first image: {warm:.2f} s")
     if frame:
-        print(f"\nHeidmann 1991 shadow frame 1280x1024: {frame[1] * 1e3:.1f} ms on 1 thread, "
-              f"{frame[2] * 1e3:.1f} ms on 2 threads")
+        print(f"\nHeidmann 1991 shadow frame 1280x1024 (through the IRIS GL API): "
+              f"{frame[1] * 1e3:.1f} ms on 1 thread, {frame[2] * 1e3:.1f} ms on 2 threads; "
+              f"work skipping off: {frame['1_noskip'] * 1e3:.1f} / "
+              f"{frame['2_noskip'] * 1e3:.1f} ms")
         raw["heidmann_frame"] = frame
+        work["heidmann_frame"] = frame["work"]
+    d = dense
+    mesa_txt = ""
+    if d.get("mesa1") and d.get("mesa2"):
+        mesa_txt = (f"; Mesa {d['mesa1'] * 1e3:.1f} / {d['mesa2'] * 1e3:.1f} ms "
+                    f"(vgxsim/Mesa time at 2 threads {d['vgxsim2'] / d['mesa2']:.2f})")
+    print(f"\ndense scene ({d['triangles']} scene + {d['volume_triangles']} volume triangles, "
+          f"two lights, raster only): vgxsim {d['vgxsim1'] * 1e3:.1f} / "
+          f"{d['vgxsim2'] * 1e3:.1f} ms on 1 / 2 threads (skipping off: "
+          f"{d['vgxsim1_noskip'] * 1e3:.1f} / {d['vgxsim2_noskip'] * 1e3:.1f} ms){mesa_txt}")
+    work["dense_scene"] = d["work"]
+    raw["dense_scene"] = d
+    print("\nwork counters (one frame / one run, CommandBatch.work()):")
+    names = list(next(iter(work.values())).keys())
+    print(f"{'workload':24s}" + "".join(f" {n:>15s}" for n in names))
+    for wl, counts in work.items():
+        print(f"{wl:24s}" + "".join(f" {counts[n]:15d}" for n in names))
+    raw["work"] = work
     raw["start"] = {"cold": cold, "warm": warm}
     if args.json:
         with open(args.json, "w") as f:

@@ -12,7 +12,7 @@ import numpy as np
 from vgxsim.batch import CommandBatch
 from vgxsim.geometry.transform import orthographic
 from vgxsim.kernels.options import jit
-from vgxsim.state.context import Context
+from vgxsim.pipeline.context import Context
 from vgxsim.state.planes import Framebuffer, PlaneConfig
 from vgxsim.state.raster import RasterState
 
@@ -41,6 +41,27 @@ def zstencil_fill(layers: int = 20):
         batch.add_window_triangles(xw, yw, zw, None, tris, rs)
         batch.flush()
 
+    run.batch = batch
+    return run, layers * W * H
+
+
+def zstencil_hidden_fill(layers: int = 20):
+    """The volume pass over a scene in front of it (z cleared to -2000 first): every
+    face fails the z test with ST_KEEP on z fail, the case exact work skipping decides
+    tile by tile (units: the fragments a rasterizer without it would test)."""
+    fb = Framebuffer(PlaneConfig(W, H, stencil=8))
+    batch = CommandBatch(fb)
+    rs = RasterState(scissor=(0, W - 1, 0, H - 1), zbuffer=True, stencil=True, sfunc=7,
+                     szpass=3, wmpack=0, zwritemask=0, draw_front=True)
+    clear = RasterState(scissor=(0, W - 1, 0, H - 1))
+    xw, yw, zw, tris = fullscreen_quads(layers)
+
+    def run():
+        batch.add_clear(2, 0, -2000, 0, clear)
+        batch.add_window_triangles(xw, yw, zw, None, tris, rs)
+        batch.flush()
+
+    run.batch = batch
     return run, layers * W * H
 
 
@@ -57,6 +78,7 @@ def colour_blend_fill(layers: int = 5):
         batch.add_window_triangles(xw, yw, zw, col, tris, rs)
         batch.flush()
 
+    run.batch = batch
     return run, layers * W * H
 
 
@@ -79,6 +101,7 @@ def small_triangles(count: int = 200_000, area: float = 10.0, seed: int = 0):
         ctx.draw_arrays("triangles", obj, col, indices=idx)
         ctx.flush()
 
+    run.batch = ctx.batch
     return run, count
 
 

@@ -10,9 +10,16 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from .options import inline, parallel_jit
+from vgxsim.state.codes import (
+    AC_ACCUMULATE,
+    AC_ADD,
+    AC_CLEAR,
+    AC_CLEAR_ACCUMULATE,
+    AC_MULT,
+    AC_RETURN,
+)
 
-AC_CLEAR, AC_ACCUMULATE, AC_CLEAR_ACCUMULATE, AC_RETURN, AC_MULT, AC_ADD = range(6)
+from .options import inline, parallel_jit
 
 
 @inline

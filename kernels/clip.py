@@ -214,6 +214,16 @@ def clip_triangles(v, attr, tris, gx, gy):
     return out_v[:nvo], out_attr[:nvo], out_tris[:nto], out_src[:nto]
 
 
+@inline
+def snap(v, subpixel):
+    """One window coordinate (pixel units) to fixed point, docs/numeric_model.md s. 2:
+    ``floor(v * 256 + 0.5)`` with subpixel(TRUE), else the nearest pixel centre
+    ``floor(v + 0.5) * 256`` (ties upward)."""
+    if subpixel:
+        return np.int64(np.floor(v * ONE + 0.5))
+    return np.int64(np.floor(v + 0.5)) * ONE
+
+
 @jit
 def project_snap(v, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel):
     """Divide by w, map to IRIS window coordinates and snap to fixed point.
@@ -257,12 +267,8 @@ def project_snap(v, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel):
             continue
         x = min(max(x, -limit), limit)
         y = min(max(y, -limit), limit)
-        if subpixel:
-            xf[i] = np.int64(np.floor(x * ONE + 0.5))
-            yf[i] = np.int64(np.floor(y * ONE + 0.5))
-        else:
-            xf[i] = np.int64(np.floor(x + 0.5)) * ONE
-            yf[i] = np.int64(np.floor(y + 0.5)) * ONE
+        xf[i] = snap(x, subpixel)
+        yf[i] = snap(y, subpixel)
         zw[i] = z
     return xf, yf, zw
 
@@ -280,12 +286,8 @@ def snap_window(x, y, subpixel):
         if not (np.isfinite(xi) and np.isfinite(yi)):
             xi = 0.0
             yi = 0.0
-        if subpixel:
-            xf[i] = np.int64(np.floor(xi * ONE + 0.5))
-            yf[i] = np.int64(np.floor(yi * ONE + 0.5))
-        else:
-            xf[i] = np.int64(np.floor(xi + 0.5)) * ONE
-            yf[i] = np.int64(np.floor(yi + 0.5)) * ONE
+        xf[i] = snap(xi, subpixel)
+        yf[i] = snap(yi, subpixel)
     return xf, yf
 
 

@@ -7,167 +7,59 @@ Stencil logic is table driven: for every state the batch precomputes, per 8-bit
 stencil value s, the new value when the z test passes (or z is off) ``tab[0, s]``,
 when it fails ``tab[1, s]``, and whether the stencil test passes ``tab[2, s]``.  The
 ops, the reference, the masks, the INCR/DECR clamps and IRIS's rule that ``pass``
-applies when z-buffering is off are all folded into those 768 bytes, so the inner
-loops never branch on the op.
+applies when z-buffering is off are all folded into those 768 bytes (built by
+:mod:`vgxsim.state.derive`), so the inner loops never branch on the op.  Codes and
+column indices come from :mod:`vgxsim.state.codes`.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .options import inline, jit
+from vgxsim.state.codes import (
+    CMP_EQUAL_BIT,
+    CMP_GREATER_BIT,
+    CMP_LESS_BIT,
+    D_COLOUR,
+    D_STENCIL,
+    D_ZMASK,
+    D_ZTEST,
+    D_ZWRITE,
+    LO_SRC,
+    S_AFUNC,
+    S_AREF,
+    S_BLEND_DF,
+    S_BLEND_SF,
+    S_DRAW_BACK,
+    S_DRAW_FRONT,
+    S_LOGICOP,
+    S_WMPACK,
+    S_ZFUNC,
+    Z24_MASK,
+)
 
-# Column indices of a state row; they must match vgxsim/state/raster.py ROW (checked
-# by tests/kernels/test_state_layout.py).
-S_ZBUFFER, S_ZFUNC, S_ZWRITEMASK, S_STENCIL = 0, 1, 2, 3
-S_SREF, S_SFUNC, S_SMASK, S_SFAIL, S_SPASS, S_SZPASS, S_SWRITEMASK = 4, 5, 6, 7, 8, 9, 10
-S_BLEND_SF, S_BLEND_DF, S_LOGICOP, S_WMPACK, S_AFUNC, S_AREF = 11, 12, 13, 14, 15, 16
-S_SHADEMODEL, S_SUBPIXEL, S_CULL, S_DRAW_FRONT, S_DRAW_BACK = 17, 18, 19, 20, 21
-S_LINEWIDTH, S_LINESTYLE, S_LSREPEAT, S_PNTSIZE = 22, 23, 24, 25
-S_SX0, S_SX1, S_SY0, S_SY1 = 26, 27, 28, 29
+from .options import inline, inline_ir
 
-# Derived per-state columns computed by derive_states().
-D_MODE, D_COLOUR, D_ZTEST, D_ZWRITE, D_STENCIL, D_BLEND, D_ZMASK = 0, 1, 2, 3, 4, 5, 6
-D_SWM, D_RGBA = 7, 8  # stencil write mask limited to the planes; colour needed at all
-D_DZPASS, D_DZFAIL, D_SMAX = 9, 10, 11  # arithmetic stencil form (MODE_ZSTENCIL_ADD)
-D_CBLEND = 12  # MODE_COLOUR blend kind: 0 replace, 1 add (ONE, ONE), 2 general
-D_SIZE = 13
-MODE_GENERAL = 0
-MODE_ZSTENCIL = 1  # shadow-volume pass: z test, stencil update, no colour, no z write
-MODE_ZONLY = 2  # depth-only pass: z test and full z write, no colour, no stencil
-# Shadow-volume pass whose stencil ops are KEEP/INCR/DECR with an always-passing
-# stencil test and a full write mask (Heidmann's case): the new value is
-# clamp(s + delta, 0, smax), branch-free and vectorizable, instead of a table look-up.
-MODE_ZSTENCIL_ADD = 3
-# Colour pass with no stencil writes (stencil off, or a test whose ops change
-# nothing), alpha test off, no logicop, one draw buffer: the lit pass of Heidmann's
-# algorithm (stencil EQUAL, blend ONE+ONE) and ordinary shaded drawing.
-MODE_COLOUR = 4
 
-LO_SRC = 3
-Z24_MASK = 0xFFFFFF
+@inline
+def cmp_bits(func):
+    """The three outcome bits of a comparison code, for :func:`cmp_select`."""
+    return ((func & CMP_LESS_BIT) != 0, (func & CMP_EQUAL_BIT) != 0,
+            (func & CMP_GREATER_BIT) != 0)
+
+
+@inline
+def cmp_select(lt, eq, gt, lhs, rhs):
+    """``lhs FUNC rhs`` from the bits of :func:`cmp_bits`: branch-free, so span loops
+    that test z (or stencil) on every pixel vectorize (docs/numeric_model.md s. 6)."""
+    return (lt & (lhs < rhs)) | (eq & (lhs == rhs)) | (gt & (lhs > rhs))
 
 
 @inline
 def cmp_pass(func, lhs, rhs):
-    """SF_/ZF_/AF_ codes are bit masks of less (1), equal (2), greater (4)."""
-    return ((func >> ((lhs >= rhs) + (lhs > rhs))) & 1) != 0
-
-
-@inline
-def _stencil_op(op, s, ref, smax):
-    if op == 0:
-        return s
-    if op == 1:
-        return 0
-    if op == 2:
-        return ref & smax
-    if op == 3:
-        return s + 1 if s < smax else smax
-    if op == 4:
-        return s - 1 if s > 0 else 0
-    if op == 5:
-        return (~s) & smax
-    return s
-
-
-@inline
-def _op_delta(op):
-    if op == 3:
-        return 1
-    if op == 4:
-        return -1
-    return 0
-
-
-@jit
-def derive_states(states, stencil_planes, has_colour, has_z):
-    """Per-state derived data: fragment mode flags and stencil tables.
-
-    Parameters
-    ----------
-    states : ndarray, shape (S, R), int64
-        State-table rows (vgxsim/state/raster.py layout).
-    stencil_planes : int
-        Configured stencil planes (0-8).
-    has_colour, has_z : bool
-        Whether a colour buffer / z buffer is allocated.
-
-    Returns
-    -------
-    derived : ndarray, shape (S, D_SIZE), int64
-    tables : ndarray, shape (S, 3, 256), uint8
-    """
-    ns = states.shape[0]
-    derived = np.zeros((ns, D_SIZE), dtype=np.int64)
-    tables = np.zeros((ns, 3, 256), dtype=np.uint8)
-    smax = (1 << stencil_planes) - 1
-    for i in range(ns):
-        st = states[i]
-        ztest = has_z and st[S_ZBUFFER] != 0
-        zmask = st[S_ZWRITEMASK] & Z24_MASK
-        zwrite = ztest and zmask != 0
-        sten = stencil_planes > 0 and st[S_STENCIL] != 0
-        colour = has_colour and (st[S_WMPACK] & 0xFFFFFFFF) != 0 and (
-            st[S_DRAW_FRONT] != 0 or st[S_DRAW_BACK] != 0
-        )
-        blend = (st[S_BLEND_SF] != 1 or st[S_BLEND_DF] != 0) or st[S_LOGICOP] != LO_SRC
-        derived[i, D_COLOUR] = colour
-        derived[i, D_ZTEST] = ztest
-        derived[i, D_ZWRITE] = zwrite
-        derived[i, D_STENCIL] = sten
-        derived[i, D_BLEND] = blend
-        derived[i, D_ZMASK] = zmask
-        derived[i, D_SWM] = st[S_SWRITEMASK] & smax
-        # Colour is interpolated only when written or when the alpha test reads it.
-        derived[i, D_RGBA] = colour or st[S_AFUNC] != 7
-        alpha_always = st[S_AFUNC] == 7
-        derived[i, D_SMAX] = smax
-        add_ok = (sten and st[S_SFUNC] == 7 and (st[S_SWRITEMASK] & smax) == smax
-                  and st[S_SZPASS] in (0, 3, 4) and st[S_SPASS] in (0, 3, 4))
-        if (not colour) and ztest and sten and (not zwrite) and alpha_always:
-            derived[i, D_MODE] = MODE_ZSTENCIL_ADD if add_ok else MODE_ZSTENCIL
-            derived[i, D_DZPASS] = _op_delta(st[S_SZPASS])
-            derived[i, D_DZFAIL] = _op_delta(st[S_SPASS])
-        elif (not colour) and ztest and (not sten) and zmask == Z24_MASK and alpha_always:
-            derived[i, D_MODE] = MODE_ZONLY
-        else:
-            derived[i, D_MODE] = MODE_GENERAL
-        if derived[i, D_MODE] == MODE_GENERAL and colour and alpha_always and (
-                st[S_LOGICOP] == LO_SRC) and (st[S_DRAW_FRONT] != 0) != (st[S_DRAW_BACK] != 0) and (
-                (not ztest) or (not zwrite) or zmask == Z24_MASK):
-            derived[i, D_MODE] = MODE_COLOUR
-            if st[S_BLEND_SF] == 1 and st[S_BLEND_DF] == 0:
-                derived[i, D_CBLEND] = 0
-            elif st[S_BLEND_SF] == 1 and st[S_BLEND_DF] == 1:
-                derived[i, D_CBLEND] = 1
-            else:
-                derived[i, D_CBLEND] = 2
-        ref = st[S_SREF]
-        mask = st[S_SMASK]
-        wm = st[S_SWRITEMASK] & smax
-        for s in range(256):
-            if not sten:
-                tables[i, 0, s] = s
-                tables[i, 1, s] = s
-                tables[i, 2, s] = 1
-                continue
-            passed = cmp_pass(st[S_SFUNC], ref & mask, s & mask)
-            if passed:
-                r0 = _stencil_op(st[S_SZPASS] if ztest else st[S_SPASS], s, ref, smax)
-                r1 = _stencil_op(st[S_SPASS], s, ref, smax)
-            else:
-                r0 = _stencil_op(st[S_SFAIL], s, ref, smax)
-                r1 = r0
-            tables[i, 0, s] = (s & ~wm) | (r0 & wm)
-            tables[i, 1, s] = (s & ~wm) | (r1 & wm)
-            tables[i, 2, s] = 1 if passed else 0
-        if derived[i, D_MODE] == MODE_COLOUR and sten:
-            for s in range(smax + 1):
-                if tables[i, 0, s] != s or tables[i, 1, s] != s:
-                    derived[i, D_MODE] = MODE_GENERAL
-                    break
-    return derived, tables
+    """``lhs FUNC rhs`` for one SF_/ZF_/AF_ code (the per-fragment form)."""
+    lt, eq, gt = cmp_bits(func)
+    return cmp_select(lt, eq, gt, lhs, rhs)
 
 
 @inline
@@ -268,6 +160,36 @@ def round_c(c):
 def wrap_z24(zi):
     """A full-mask z write: the low 24 bits, as a signed 24-bit value."""
     return ((zi + 0x800000) & Z24_MASK) - 0x800000
+
+
+@inline
+def channel(c):
+    """:func:`round_c` in a form span loops vectorize: ``floor(c + 0.5)`` clamped in
+    float64 before the conversion.  Equal to ``round_c`` for every input, NaN and
+    values beyond int64 included (there the x86 conversion gives INT64_MIN, so 0)."""
+    f = np.floor(c + 0.5)
+    f = f if (f > 0.0) & (f < 9.2e18) else 0.0  # '&', not 'and': no branch, so it vectorizes
+    f = 255.0 if f > 255.0 else f
+    return np.int64(f)
+
+
+@inline
+def mix_sa(s, d, sa):
+    """blendfunction(BF_SA, BF_MSA) on one component: ``(s*sa + d*(255 - sa) + 127)
+    // 255`` (s. 6) by a multiply and shift, exact over the whole range 0..65152."""
+    return ((s * sa + d * (255 - sa) + 127) * 32897) >> 23
+
+
+@inline_ir
+def blend_sa_msa(dx, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst):
+    """The interpolated colour at column offset ``dx``, alpha-blended onto ``dst``.
+    (Inlined in Numba's IR: too large for LLVM's inliner, and a call per pixel would
+    stop the span loop from vectorizing.)"""
+    a = channel(aa + adx * dx)
+    out = mix_sa(channel(ra + rdx * dx), dst & 0xFF, a)
+    out |= mix_sa(channel(ga + gdx * dx), (dst >> 8) & 0xFF, a) << 8
+    out |= mix_sa(channel(ba + bdx * dx), (dst >> 16) & 0xFF, a) << 16
+    return out | (mix_sa(a, (dst >> 24) & 0xFF, a) << 24)
 
 
 @inline

@@ -36,6 +36,8 @@ All ray parameter intervals are closed: ``t0 <= t <= t1``.
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 
 from .bvh import STACK_SIZE
@@ -98,16 +100,87 @@ def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     cx, cy, cz, cw = _vertex(tris, k, 2, kx, ky, kz, okx, oky, okz, sx, sy, sz)
     u = cx * by - cy * bx
     v = ax * cy - ay * cx
+    if (u < 0.0 and v > 0.0) or (u > 0.0 and v < 0.0):
+        return False, 0.0, 0  # the common miss, decided before W
     w = bx * ay - by * ax
-    su = _edge_sign(u, bx, by, bw, cx, cy, cw)
-    sv = _edge_sign(v, cx, cy, cw, ax, ay, aw)
-    sw = _edge_sign(w, ax, ay, aw, bx, by, bw)
-    if su == 0 or su != sv or su != sw:
+    if u > 0.0 and v > 0.0 and w > 0.0:
+        su = 1
+    elif u < 0.0 and v < 0.0 and w < 0.0:
+        su = -1
+    elif u != 0.0 and v != 0.0 and w != 0.0:
         return False, 0.0, 0
+    else:  # some edge function is exactly 0: the tie rule decides
+        su = _edge_sign(u, bx, by, bw, cx, cy, cw)
+        sv = _edge_sign(v, cx, cy, cw, ax, ay, aw)
+        sw = _edge_sign(w, ax, ay, aw, bx, by, bw)
+        if su == 0 or su != sv or su != sw:
+            return False, 0.0, 0
     den = u * aw + v * bw + w * cw
     if den == 0.0:
         return False, 0.0, 0
     return True, (u * az + v * bz + w * cz) / den, su
+
+
+#: Eye rays through pixel centres tested in window space, as the rasterizer does
+#: (docs/numeric_model.md section 3), for the triangles it draws (clipped, snapped).
+#: ``width``: the image width (ray r is pixel ``(r % width, r // width)``), 0 for
+#: none; ``fx, fy``: (T, 3) int64 fixed-point window coordinates (1/256 px) by caller
+#: index; ``exact``: (T,) bool, which triangles are tested so (others in 3-D).
+Window = namedtuple("Window", ["width", "fx", "fy", "exact"])
+
+
+@inline
+def _edge_covers(xi, yi, xj, yj, px, py):
+    """Rasterizer edge test: E > 0, or E == 0 on an inclusive (left/bottom) edge."""
+    e = (xj - xi) * (py - yi) - (yj - yi) * (px - xi)
+    if e > 0:
+        return True
+    if e < 0:
+        return False
+    return (yj - yi) < 0 or ((yj == yi) and (xj > xi))
+
+
+@inline
+def _window_covers(win, idx, r):
+    """The rasterizer's coverage of pixel r by triangle idx (exact integers)."""
+    px = (r % win.width) * 256
+    py = (r // win.width) * 256
+    x0, y0 = win.fx[idx, 0], win.fy[idx, 0]
+    x1, y1 = win.fx[idx, 1], win.fy[idx, 1]
+    x2, y2 = win.fx[idx, 2], win.fy[idx, 2]
+    area2 = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+    if area2 == 0:
+        return False
+    if area2 < 0:
+        x1, y1, x2, y2 = x2, y2, x1, y1
+    return (_edge_covers(x0, y0, x1, y1, px, py) and _edge_covers(x1, y1, x2, y2, px, py)
+            and _edge_covers(x2, y2, x0, y0, px, py))
+
+
+@inline
+def _plane_t(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
+    """(ok, t) where the ray meets triangle k's plane (ok False if parallel)."""
+    ax, ay, az, aw = _vertex(tris, k, 0, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    bx, by, bz, bw = _vertex(tris, k, 1, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    cx, cy, cz, cw = _vertex(tris, k, 2, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    u = cx * by - cy * bx
+    v = ax * cy - ay * cx
+    w = bx * ay - by * ax
+    den = u * aw + v * bw + w * cw
+    if den == 0.0:
+        return False, 0.0
+    return True, (u * az + v * bz + w * cz) / den
+
+
+@inline
+def _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz):
+    """(hit, t): window-space coverage when ``win`` covers triangle idx, else 3-D."""
+    if win.width > 0 and win.exact[idx]:
+        if not _window_covers(win, idx, r):
+            return False, 0.0
+        return _plane_t(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+    return hit, t
 
 
 @inline
@@ -118,8 +191,8 @@ def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
     ``(lo - o) * (1/d)``) and a zero direction component is a containment test, so
     the test never culls a ray that meets the box; infinite bounds are fine.
     """
-    tn = t0
-    tf = t1
+    tn = -np.inf
+    tf = np.inf
     for c in range(3):
         if c == 0:
             o, d, inv = ox, dx, ix
@@ -135,20 +208,28 @@ def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
         b = (hi[node, c] - o) * inv
         if a > b:
             a, b = b, a
-        a -= abs(a) * 1e-15
-        b += abs(b) * 1e-15
         if a > tn:
             tn = a
         if b < tf:
             tf = b
+    # widening the max of the entries equals the max of the widened entries
+    # (x - |x| c is increasing), so once per box is enough
+    tn -= abs(tn) * 1e-15
+    tf += abs(tf) * 1e-15
+    if t0 > tn:
+        tn = t0
+    if t1 < tf:
+        tf = t1
     return tn <= tf, tn
 
 
 @inline
-def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
+def _closest(bvh, win, r, stack, stack_t, ox, oy, oz, dx, dy, dz, t0, t1):
     """Nearest hit with t0 <= t <= t1: (caller's triangle index or -1, t).
 
-    Ties in t go to the lowest caller index, whatever the tree's order."""
+    Ties in t go to the lowest caller index, whatever the tree's order.  Nodes wait
+    on the stack with their entry parameter and are dropped when a hit found since
+    is nearer."""
     best = -1
     bt = t1
     if bvh.lo.shape[0] == 0:
@@ -161,21 +242,24 @@ def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
     iy = 1.0 / dy if dy != 0.0 else 0.0
     iz = 1.0 / dz if dz != 0.0 else 0.0
     lo, hi, first, count, tris, index = bvh.lo, bvh.hi, bvh.first, bvh.count, bvh.tris, bvh.index
-    ok, _ = _box(lo, hi, 0, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
+    ok, tn = _box(lo, hi, 0, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
     if not ok:
         return best, np.inf
     stack[0] = 0
+    stack_t[0] = tn
     sp = 1
     while sp > 0:
         sp -= 1
+        if stack_t[sp] > bt:
+            continue
         node = stack[sp]
         cnt = count[node]
         if cnt > 0:
             f = first[node]
             for k in range(f, f + cnt):
-                hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                idx = index[k]
+                hit, t = _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz)
                 if hit and t >= t0 and t <= bt:
-                    idx = index[k]
                     if t < bt or best < 0 or idx < best:
                         bt = t
                         best = idx
@@ -186,16 +270,22 @@ def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
         if hl and hr:
             if tl <= tr:  # nearer child popped first
                 stack[sp] = left + 1
+                stack_t[sp] = tr
                 stack[sp + 1] = left
+                stack_t[sp + 1] = tl
             else:
                 stack[sp] = left
+                stack_t[sp] = tl
                 stack[sp + 1] = left + 1
+                stack_t[sp + 1] = tr
             sp += 2
         elif hl:
             stack[sp] = left
+            stack_t[sp] = tl
             sp += 1
         elif hr:
             stack[sp] = left + 1
+            stack_t[sp] = tr
             sp += 1
     if best < 0:
         return best, np.inf
@@ -203,8 +293,8 @@ def _closest(bvh, stack, ox, oy, oz, dx, dy, dz, t0, t1):
 
 
 @inline
-def _all_hits(bvh, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1, exclude,
-              any_hit):
+def _all_hits(bvh, win, r, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1,
+              exclude, any_hit):
     """Caller indices of every triangle hit with t0 <= t <= t1 (``exclude`` left out),
     written to ``hits``; returns how many (at most 1 when ``any_hit``).
 
@@ -238,7 +328,7 @@ def _all_hits(bvh, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1, exc
                 if idx == exclude or mark[idx] == stamp:
                     continue
                 mark[idx] = stamp
-                hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                hit, t = _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz)
                 if hit and t >= t0 and t <= t1:
                     hits[n] = idx
                     n += 1
@@ -261,12 +351,14 @@ def _n_items(bvh):
 
 
 @jit
-def closest_hits(bvh, origin, direction, t0, t1, r0, r1, out_tri, out_t):
+def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
     """Nearest triangle along rays ``r0 .. r1-1``.
 
     Parameters
     ----------
     bvh : BVH
+    win : Window
+        Window-space coverage for eye rays (width 0: none).
     origin, direction : ndarray, shape (R, 3), float64
         Ray ``origin + t * direction``.
     t0, t1 : float
@@ -279,8 +371,9 @@ def closest_hits(bvh, origin, direction, t0, t1, r0, r1, out_tri, out_t):
         Its parameter, inf for none.
     """
     stack = np.empty(STACK_SIZE, dtype=np.int64)
+    stack_t = np.empty(STACK_SIZE)
     for r in range(r0, r1):
-        k, t = _closest(bvh, stack, origin[r, 0], origin[r, 1], origin[r, 2],
+        k, t = _closest(bvh, win, r, stack, stack_t, origin[r, 0], origin[r, 1], origin[r, 2],
                         direction[r, 0], direction[r, 1], direction[r, 2], t0, t1)
         out_tri[r] = k
         out_t[r] = t
@@ -332,6 +425,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
     hits = np.empty(max(1, bvh.index.shape[0]), dtype=np.int64)
     seen = np.full(_n_items(bvh), -1, dtype=np.int64)
     mark = np.full(max(1, n_objects), -1, dtype=np.int64)
+    win = Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
+                 np.zeros(0, np.bool_))
     nl = lights.shape[0]
     for r in range(r0, r1):
         if not active[r]:
@@ -351,7 +446,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
             s0 = offset / np.sqrt(dx * dx + dy * dy + dz * dz)
             n = 0
             if s0 < 0.5:
-                n = _all_hits(bvh, stack, hits, seen, r * nl + li, px, py, pz, dx, dy, dz,
+                n = _all_hits(bvh, win, r, stack, hits, seen, r * nl + li, px, py, pz,
+                              dx, dy, dz,
                               s0, 1.0 - s0, exclude[r], not counts)
             out_blocked[r, li] = n > 0
             if counts:
@@ -370,7 +466,7 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
 
 
 @jit
-def count_crossings(bvh, face_light, face_weight, origin, direction, t_end, r0, r1,
+def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end, r0, r1,
                     out_count):
     """Signed count of shadow-volume faces crossed by each ray, per light.
 
@@ -378,6 +474,8 @@ def count_crossings(bvh, face_light, face_weight, origin, direction, t_end, r0, 
     ----------
     bvh : BVH
         Faces of every light, numbered by the caller's face index.
+    win : Window
+        Window-space coverage for eye rays (width 0: none).
     face_light : ndarray, shape (F,), int64
         The light each face belongs to.
     face_weight : ndarray, shape (F,), int64
@@ -395,7 +493,8 @@ def count_crossings(bvh, face_light, face_weight, origin, direction, t_end, r0, 
     for r in range(r0, r1):
         for li in range(nl):
             out_count[r, li] = 0
-        n = _all_hits(bvh, stack, hits, seen, r, origin[r, 0], origin[r, 1], origin[r, 2],
+        n = _all_hits(bvh, win, r, stack, hits, seen, r, origin[r, 0], origin[r, 1],
+                      origin[r, 2],
                       direction[r, 0], direction[r, 1], direction[r, 2], 0.0, t_end[r],
                       -1, False)
         for q in range(n):

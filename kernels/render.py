@@ -14,7 +14,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from .fragment import (
+from vgxsim.state.codes import (
+    CBLEND_ADD,
+    CBLEND_GENERAL,
+    CBLEND_REPLACE,
+    CBLEND_SA_MSA,
+    CLEAR_COLOUR,
+    CLEAR_STENCIL,
+    CLEAR_Z,
     D_CBLEND,
     D_DZFAIL,
     D_DZPASS,
@@ -23,9 +30,12 @@ from .fragment import (
     D_SMAX,
     D_STENCIL,
     D_SWM,
+    D_ZFAIL_NOOP,
     D_ZMASK,
     D_ZTEST,
     D_ZWRITE,
+    KIND_FRAGMENTS,
+    KIND_TRIANGLE,
     LO_SRC,
     MODE_COLOUR,
     MODE_GENERAL,
@@ -45,8 +55,15 @@ from .fragment import (
     S_SY1,
     S_WMPACK,
     S_ZFUNC,
+    WORK_FRAGMENTS,
+    WORK_STENCIL_WRITES,
+)
+
+from .fragment import (
     add_sat,
-    cmp_pass,
+    blend_sa_msa,
+    cmp_bits,
+    cmp_select,
     colour_row,
     combine,
     fragment,
@@ -57,12 +74,19 @@ from .fragment import (
 )
 from .options import inline_ir, jit
 from .raster import covers, row_span
+from .tiles import (
+    TB_VALID,
+    TILE_FULL,
+    TILE_MIN_PIXELS,
+    TILE_PARTIAL,
+    TILE_SHIFT,
+    TILE_W,
+    classify_tiles,
+    note_z_cleared,
+    note_z_written,
+)
 
 NARROW = 8  # triangles at most this many pixels wide find their spans by scanning
-KIND_TRIANGLE = 0
-KIND_FRAGMENTS = 1
-KIND_CLEAR = 2
-CLEAR_COLOUR, CLEAR_Z, CLEAR_STENCIL = 1, 2, 4
 
 
 @jit
@@ -97,14 +121,24 @@ def bin_primitives(py0, py1, nprims, band_shift, nbands):
 @inline_ir
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
-    front, back, zbuf, sten, edge_mode, general_only,
+    front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
+    tb, runs, work,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
     xlo = max(t_box[t, 0], st[S_SX0])
     xhi = min(t_box[t, 1], st[S_SX1])
-    if xlo > xhi:
+    if xlo > xhi or ylo > yhi:
         return
+    skip = skip_tiles and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
+    if (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS:
+        nruns = classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st,
+                               zbuf, tb, runs, skip, cover_blocks, not edge_mode, work)
+    else:
+        runs[0, 0] = xlo
+        runs[0, 1] = xhi
+        runs[0, 2] = TILE_PARTIAL
+        nruns = 1
     edge = t_edge[t]
     z0 = t_z[t, 0]
     x0 = t_z[t, 1]
@@ -117,70 +151,84 @@ def _triangle_rows(
     if general_only or edge_mode:
         mode = MODE_GENERAL
     colour = dv[D_RGBA] != 0
-    zfunc = st[S_ZFUNC]
+    lt, eq, gt = cmp_bits(st[S_ZFUNC])
     dpass = dv[D_DZPASS]
     dfail = dv[D_DZFAIL]
     smax = dv[D_SMAX]
     narrow = xhi - xlo < NARROW
+    tested = 0
     for y in range(ylo, yhi + 1):
-        if edge_mode:
-            xl, xr = xlo, xhi
-        elif narrow:
-            # Small triangles: scan the few pixel centres of the row with the edge
-            # functions (multiply-adds) instead of solving for the span (divisions).
-            xl = xhi + 1
-            xr = xlo - 1
-            for x in range(xlo, xhi + 1):
-                if covers(edge, x, y):
-                    if x < xl:
-                        xl = x
-                    xr = x
-            if xl > xr:
-                continue
-        else:
-            xl, xr = row_span(edge, y, xlo, xhi)
-            if xl > xr:
-                continue
-        za = z0 + dzdy * (y - y0)
-        if mode == MODE_ZSTENCIL_ADD:
-            zrow = zbuf[y]
-            srow = sten[y]
-            lt = (zfunc & 1) != 0
-            eq = (zfunc & 2) != 0
-            gt = (zfunc & 4) != 0
-            for x in range(xl, xr + 1):
-                ux = np.uintp(x)  # unsigned: no negative-index wraparound, so it vectorizes
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zb = np.int64(zrow[ux])
-                passed = (lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))
-                sv = np.int64(srow[ux]) + (dpass if passed else dfail)
-                srow[ux] = min(max(sv, 0), smax)
-        elif mode == MODE_COLOUR:
-            _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
-                         front, back, zbuf, sten)
-        elif mode == MODE_ZSTENCIL:
-            zrow = zbuf[y]
-            srow = sten[y]
-            t0 = tab[0]
-            t1 = tab[1]
-            for x in range(xl, xr + 1):
-                ux = np.uintp(x)
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                s = srow[ux]
-                if cmp_pass(zfunc, zi, np.int64(zrow[ux])):
-                    srow[ux] = t0[s]
-                else:
-                    srow[ux] = t1[s]
-        elif mode == MODE_ZONLY:
-            uy = np.uintp(y)
-            for x in range(xl, xr + 1):
-                ux = np.uintp(x)
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                if cmp_pass(zfunc, zi, np.int64(zbuf[uy, ux])):
-                    zbuf[uy, ux] = wrap_z24(zi)
-        else:
-            _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
-                         edge_mode, st, dv, tab, front, back, zbuf, sten)
+        if nruns == 0:
+            break
+        sl = 0
+        sr = -1
+        solved = False
+        for r in range(nruns):
+            full = runs[r, 2] == TILE_FULL
+            if full or edge_mode:
+                xl = runs[r, 0]
+                xr = runs[r, 1]
+            else:
+                if not solved:
+                    solved = True
+                    if narrow:
+                        # Small triangles: scan the few pixel centres of the row with
+                        # the edge functions (multiply-adds) instead of solving for the
+                        # span (divisions).
+                        sl = xhi + 1
+                        for x in range(xlo, xhi + 1):
+                            if covers(edge, x, y):
+                                if x < sl:
+                                    sl = x
+                                sr = x
+                    else:
+                        sl, sr = row_span(edge, y, xlo, xhi)
+                xl = max(sl, runs[r, 0])
+                xr = min(sr, runs[r, 1])
+                if xl > xr:
+                    continue
+            tested += xr - xl + 1
+            za = z0 + dzdy * (y - y0)
+            if mode == MODE_ZSTENCIL_ADD:
+                zrow = zbuf[y]
+                srow = sten[y]
+                for x in range(xl, xr + 1):
+                    ux = np.uintp(x)  # unsigned: no negative-index wraparound: vectorizes
+                    zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                    passed = cmp_select(lt, eq, gt, zi, np.int64(zrow[ux]))
+                    sv = np.int64(srow[ux]) + (dpass if passed else dfail)
+                    srow[ux] = min(max(sv, 0), smax)
+            elif mode == MODE_COLOUR:
+                _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
+                             front, back, zbuf, sten)
+            elif mode == MODE_ZSTENCIL:
+                zrow = zbuf[y]
+                srow = sten[y]
+                t0 = tab[0]
+                t1 = tab[1]
+                for x in range(xl, xr + 1):
+                    ux = np.uintp(x)
+                    zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                    s = srow[ux]
+                    if cmp_select(lt, eq, gt, zi, np.int64(zrow[ux])):
+                        srow[ux] = t0[s]
+                    else:
+                        srow[ux] = t1[s]
+            elif mode == MODE_ZONLY:
+                uy = np.uintp(y)
+                for x in range(xl, xr + 1):
+                    ux = np.uintp(x)
+                    zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                    if cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux])):
+                        zbuf[uy, ux] = wrap_z24(zi)
+            else:
+                _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
+                             edge_mode and not full, st, dv, tab, front, back, zbuf, sten)
+    work[WORK_FRAGMENTS] += tested
+    if dv[D_STENCIL] != 0 and mode != MODE_COLOUR:
+        work[WORK_STENCIL_WRITES] += tested
+    if dv[D_ZWRITE] != 0:
+        note_z_written(tb, xlo, xhi, zmin, zmax, dv[D_ZMASK])
 
 
 @jit
@@ -208,35 +256,34 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
     buf = back[y] if st[S_DRAW_BACK] else front[y]
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
-    zfunc = st[S_ZFUNC]
-    lt = (zfunc & 1) != 0
-    eq = (zfunc & 2) != 0
-    gt = (zfunc & 4) != 0
+    lt, eq, gt = cmp_bits(st[S_ZFUNC])
     blend = dv[D_CBLEND]
     wm = st[S_WMPACK] & 0xFFFFFFFF
     keep = ~wm & 0xFFFFFFFF
     zrow = zbuf[y]
     srow = sten[y]
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
-    if ztest and blend != 2:
-        # Branch-free form for the common passes (z test on, replace or add blend;
-        # Heidmann's ambient and lit passes): every pixel computes everything and the
-        # writes select old or new values, so LLVM can vectorize the loop.
+    if ztest and blend != CBLEND_GENERAL:
+        # Branch-free form for the common passes (z test on; replace, add or SA+MSA
+        # blend; Heidmann's ambient and lit passes): every pixel computes everything
+        # and the writes select old or new values, so LLVM can vectorize the loop.
         sfunc = st[S_SFUNC]
         smask = st[S_SMASK]
         sref = st[S_SREF] & smask
-        slt = (sfunc & 1) != 0
-        seq = (sfunc & 2) != 0
-        sgt = (sfunc & 4) != 0
-        add = blend == 1
-        if dv[D_STENCIL] != 0:
+        slt, seq, sgt = cmp_bits(sfunc)
+        add = blend == CBLEND_ADD
+        if blend == CBLEND_SA_MSA:
+            _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                        lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
+                        wm, keep, buf, zrow, srow)
+        elif dv[D_STENCIL] != 0:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 sv = np.int64(srow[ux]) & smask
-                sok = (slt & (sref < sv)) | (seq & (sref == sv)) | (sgt & (sref > sv))
+                sok = cmp_select(slt, seq, sgt, sref, sv)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
                 zb = np.int64(zrow[ux])
-                ok = sok & ((lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb)))
+                ok = sok & cmp_select(lt, eq, gt, zi, zb)
                 zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
@@ -248,7 +295,7 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                 ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
                 zb = np.int64(zrow[ux])
-                ok = (lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))
+                ok = cmp_select(lt, eq, gt, zi, zb)
                 zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
@@ -261,6 +308,36 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
 
 
 @jit
+def _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, keep, buf, zrow, srow):
+    """MODE_COLOUR with blendfunction(BF_SA, BF_MSA) and the z test on: the
+    branch-free span loop of :func:`_colour_span` with the alpha blend computed
+    component by component (compiled out of line: keeps the band kernel's compile
+    short; one call per row span)."""
+    if stest:
+        for x in range(xl, xr + 1):
+            ux = np.uintp(x)
+            sok = cmp_select(slt, seq, sgt, sref, np.int64(srow[ux]) & smask)
+            zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+            zb = np.int64(zrow[ux])
+            ok = sok & cmp_select(lt, eq, gt, zi, zb)
+            zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+            dst = np.int64(buf[ux])
+            out = blend_sa_msa(x - x0, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst)
+            buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+    else:
+        for x in range(xl, xr + 1):
+            ux = np.uintp(x)
+            zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+            zb = np.int64(zrow[ux])
+            ok = cmp_select(lt, eq, gt, zi, zb)
+            zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+            dst = np.int64(buf[ux])
+            out = blend_sa_msa(x - x0, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst)
+            buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+
+
+@jit
 def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                       front, back, zbuf, sten):
     """MODE_COLOUR without a z test or with a general blend: per-pixel branches,
@@ -269,10 +346,7 @@ def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     stest = dv[D_STENCIL] != 0
-    zfunc = st[S_ZFUNC]
-    lt = (zfunc & 1) != 0
-    eq = (zfunc & 2) != 0
-    gt = (zfunc & 4) != 0
+    lt, eq, gt = cmp_bits(st[S_ZFUNC])
     blend = dv[D_CBLEND]
     sf = st[S_BLEND_SF]
     df = st[S_BLEND_DF]
@@ -289,16 +363,16 @@ def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
         if ztest:
             zi = round_z(za + dzdx * (x - x0), zmin, zmax)
             zb = np.int64(zrow[ux])
-            if not ((lt & (zi < zb)) | (eq & (zi == zb)) | (gt & (zi > zb))):
+            if not cmp_select(lt, eq, gt, zi, zb):
                 continue
             if zwrite:
                 zrow[ux] = wrap_z24(zi)
         dx = x - x0
         src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
         dst = np.int64(buf[ux])
-        if blend == 0:
+        if blend == CBLEND_REPLACE:
             out = src
-        elif blend == 1:
+        elif blend == CBLEND_ADD:
             out = add_sat(src, dst)
         else:
             out = combine(src, dst, sf, df, LO_SRC, 0xFFFFFFFF)
@@ -306,11 +380,13 @@ def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
 
 
 @jit
-def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten):
+def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten, tb):
     ylo = max(y_lo, st[S_SY0])
     yhi = min(y_hi, st[S_SY1])
     xlo = st[S_SX0]
     xhi = st[S_SX1]
+    if ylo > yhi or xlo > xhi:
+        return
     planes = c_vals[c, 0]
     if planes & CLEAR_COLOUR:
         wm = st[S_WMPACK] & 0xFFFFFFFF
@@ -335,6 +411,7 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten):
             for x in range(xlo, xhi + 1):
                 ux = np.uintp(x)
                 row[ux] = write_z(np.int64(row[ux]), zval, zmask)
+        note_z_cleared(tb, xlo, xhi, ylo == y_lo and yhi == y_hi, front.shape[1], zval, zmask)
     if planes & CLEAR_STENCIL:
         wm = dv[D_SWM]
         sval = c_vals[c, 3] & wm
@@ -347,7 +424,9 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten):
 
 @jit
 def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
-                  front, back, zbuf, sten):
+                  front, back, zbuf, sten, tb, work):
+    if dv[D_ZWRITE] != 0:
+        tb[:, TB_VALID] = 0  # points and lines: forget the band's depth bounds
     for f in range(r_range[r, 0], r_range[r, 1]):
         y = f_xy[f, 1]
         if y < y_lo or y > y_hi or y < st[S_SY0] or y > st[S_SY1]:
@@ -355,6 +434,7 @@ def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
         x = f_xy[f, 0]
         if x < st[S_SX0] or x > st[S_SX1]:
             continue
+        work[WORK_FRAGMENTS] += 1
         fragment(x, y, np.int64(f_z[f]), np.int64(f_rgba[f]), st, dv, tab,
                  front, back, zbuf, sten)
 
@@ -368,7 +448,7 @@ def render_bands(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    edge_mode, general_only,
+    edge_mode, general_only, skip_tiles, cover_blocks, work,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -405,12 +485,22 @@ def render_bands(
     edge_mode, general_only : bool
         Test switches: edge-function rasterizer instead of spans; the general
         per-fragment path instead of the fast span loops.
+    skip_tiles, cover_blocks : bool
+        Exact work skipping (:mod:`.tiles`): tiles whose depth bounds decide the z
+        test; tiles fully inside a triangle (switches, on by default).
+    work : ndarray, shape (nbands, WORK_SIZE), int64
+        Work counters (WORK_*), one row per band, added to.
     """
     band_h = 1 << band_shift
     nbands = starts.shape[0] - 1
+    ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
+    tb = np.zeros((ntiles, 3), np.int64)
+    runs = np.zeros((ntiles, 3), np.int64)
     for b in range(tid, nbands, nthreads):
         y_lo = b * band_h
         y_hi = min(y_lo + band_h, height) - 1
+        tb[:, TB_VALID] = 0  # bounds are found again in each band, on first use
+        bw = work[b]
         for i in range(starts[b], starts[b + 1]):
             p = items[i]
             kind = p_kind[p]
@@ -420,14 +510,15 @@ def render_bands(
                 _triangle_rows(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     states[s], derived[s], tables[s],
-                    front, back, zbuf, sten, edge_mode, general_only,
+                    front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
+                    cover_blocks, tb, runs, bw,
                 )
             elif kind == KIND_FRAGMENTS:
                 s = r_state[ref]
                 _fragment_run(ref, y_lo, y_hi, f_xy, f_z, f_rgba, r_range,
                               states[s], derived[s], tables[s],
-                              front, back, zbuf, sten)
+                              front, back, zbuf, sten, tb, bw)
             else:
                 s = c_state[ref]
                 _clear_rows(ref, y_lo, y_hi, c_vals, states[s], derived[s],
-                            front, back, zbuf, sten)
+                            front, back, zbuf, sten, tb)

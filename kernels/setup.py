@@ -15,11 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .clip import ONE
-from .options import inline, jit
+from vgxsim.state.codes import CULL_BACK, CULL_FRONT
 
-CULL_BACK = 1
-CULL_FRONT = 2
+from .clip import ONE
+from .options import inline, inline_ir, jit
 
 
 @inline
@@ -94,76 +93,100 @@ def setup_triangles(
     """
     n = offset
     for t in range(tris.shape[0]):
-        i0, i1, i2 = tris[t, 0], tris[t, 1], tris[t, 2]
-        x0, y0, x1, y1, x2, y2 = xf[i0], yf[i0], xf[i1], yf[i1], xf[i2], yf[i2]
-        area2 = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
-        if (area2 == 0 or (area2 < 0 and (cull & CULL_BACK) != 0)
-                or (area2 > 0 and (cull & CULL_FRONT) != 0)):
-            _dead(t_box, t_state, n, state)
-            n += 1
-            continue
-        # Canonical order: ascending (y, x).
-        a, b, c = i0, i1, i2
-        if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
-            a, b = b, a
-        if (yf[c] < yf[b]) or (yf[c] == yf[b] and xf[c] < xf[b]):
-            b, c = c, b
-            if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
-                a, b = b, a
-        ax, ay, bx, by, cx, cy = xf[a], yf[a], xf[b], yf[b], xf[c], yf[c]
-        det2 = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
-        # Edges of the counter-clockwise version.
-        if det2 > 0:
-            _edge(ax, ay, bx, by, t_edge[n], 0)
-            _edge(bx, by, cx, cy, t_edge[n], 1)
-            _edge(cx, cy, ax, ay, t_edge[n], 2)
-        else:
-            _edge(ax, ay, cx, cy, t_edge[n], 0)
-            _edge(cx, cy, bx, by, t_edge[n], 1)
-            _edge(bx, by, ax, ay, t_edge[n], 2)
-        xmin = min(ax, min(bx, cx))
-        xmax = max(ax, max(bx, cx))
-        t_box[n, 0] = _ceil_div_one(xmin)
-        t_box[n, 1] = xmax // ONE
-        t_box[n, 2] = ay // ONE + (1 if ay % ONE != 0 else 0)
-        t_box[n, 3] = cy // ONE
-        if t_box[n, 0] > t_box[n, 1] or t_box[n, 2] > t_box[n, 3]:
-            _dead(t_box, t_state, n, state)  # no pixel centre inside the bounding box
-            n += 1
-            continue
-        fx0 = ax / ONE
-        fy0 = ay / ONE
-        dxb = bx / ONE - fx0
-        dyb = by / ONE - fy0
-        dxc = cx / ONE - fx0
-        dyc = cy / ONE - fy0
-        det = det2 / (ONE * ONE)
-        za, zb, zc = zw[a], zw[b], zw[c]
-        t_z[n, 0] = za
-        t_z[n, 1] = fx0
-        t_z[n, 2] = fy0
-        t_z[n, 3] = ((zb - za) * dyc - (zc - za) * dyb) / det
-        t_z[n, 4] = (dxb * (zc - za) - dxc * (zb - za)) / det
-        ra = np.floor(za + 0.5)
-        rb = np.floor(zb + 0.5)
-        rc = np.floor(zc + 0.5)
-        t_zlim[n, 0] = np.int64(min(ra, min(rb, rc)))
-        t_zlim[n, 1] = np.int64(max(ra, max(rb, rc)))
-        if want_colour:
-            if flat:
-                s = src[t]
-                for ch in range(4):
-                    t_col[n, ch, 0] = flat_col[s, ch] * 255.0
-                    t_col[n, ch, 1] = 0.0
-                    t_col[n, ch, 2] = 0.0
-            else:
-                for ch in range(4):
-                    ca = col[a, ch] * 255.0
-                    cb = col[b, ch] * 255.0
-                    cc = col[c, ch] * 255.0
-                    t_col[n, ch, 0] = ca
-                    t_col[n, ch, 1] = ((cb - ca) * dyc - (cc - ca) * dyb) / det
-                    t_col[n, ch, 2] = (dxb * (cc - ca) - dxc * (cb - ca)) / det
-        t_state[n] = state
+        _setup_one(xf, yf, zw, col, tris, src, flat_col, state, cull, flat, want_colour,
+                   t_edge, t_box, t_z, t_zlim, t_col, t_state, t, n)
         n += 1
     return n
+
+
+@jit
+def setup_triangles_states(
+    xf, yf, zw, col, tris, src, flat_col, states, culls, flat, want_colour,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state, offset,
+):
+    """:func:`setup_triangles` with a state-table index and a cull mode per triangle
+    (``states``, ``culls``: shape (Nt,), int64): one call sets up triangles drawn
+    with different fragment state (the 1991 code changes stencil() before every
+    shadow face, nothing else)."""
+    n = offset
+    for t in range(tris.shape[0]):
+        _setup_one(xf, yf, zw, col, tris, src, flat_col, states[t], culls[t], flat,
+                   want_colour, t_edge, t_box, t_z, t_zlim, t_col, t_state, t, n)
+        n += 1
+    return n
+
+
+@inline_ir
+def _setup_one(xf, yf, zw, col, tris, src, flat_col, state, cull, flat, want_colour,
+               t_edge, t_box, t_z, t_zlim, t_col, t_state, t, n):
+    """Set up triangle ``t`` into slot ``n`` (a dead record if it draws nothing)."""
+    i0, i1, i2 = tris[t, 0], tris[t, 1], tris[t, 2]
+    x0, y0, x1, y1, x2, y2 = xf[i0], yf[i0], xf[i1], yf[i1], xf[i2], yf[i2]
+    area2 = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+    if (area2 == 0 or (area2 < 0 and (cull & CULL_BACK) != 0)
+            or (area2 > 0 and (cull & CULL_FRONT) != 0)):
+        _dead(t_box, t_state, n, state)
+        return
+    # Canonical order: ascending (y, x).
+    a, b, c = i0, i1, i2
+    if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
+        a, b = b, a
+    if (yf[c] < yf[b]) or (yf[c] == yf[b] and xf[c] < xf[b]):
+        b, c = c, b
+        if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
+            a, b = b, a
+    ax, ay, bx, by, cx, cy = xf[a], yf[a], xf[b], yf[b], xf[c], yf[c]
+    det2 = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
+    # Edges of the counter-clockwise version.
+    if det2 > 0:
+        _edge(ax, ay, bx, by, t_edge[n], 0)
+        _edge(bx, by, cx, cy, t_edge[n], 1)
+        _edge(cx, cy, ax, ay, t_edge[n], 2)
+    else:
+        _edge(ax, ay, cx, cy, t_edge[n], 0)
+        _edge(cx, cy, bx, by, t_edge[n], 1)
+        _edge(bx, by, ax, ay, t_edge[n], 2)
+    xmin = min(ax, min(bx, cx))
+    xmax = max(ax, max(bx, cx))
+    t_box[n, 0] = _ceil_div_one(xmin)
+    t_box[n, 1] = xmax // ONE
+    t_box[n, 2] = ay // ONE + (1 if ay % ONE != 0 else 0)
+    t_box[n, 3] = cy // ONE
+    if t_box[n, 0] > t_box[n, 1] or t_box[n, 2] > t_box[n, 3]:
+        _dead(t_box, t_state, n, state)  # no pixel centre inside the bounding box
+        return
+    fx0 = ax / ONE
+    fy0 = ay / ONE
+    dxb = bx / ONE - fx0
+    dyb = by / ONE - fy0
+    dxc = cx / ONE - fx0
+    dyc = cy / ONE - fy0
+    det = det2 / (ONE * ONE)
+    za, zb, zc = zw[a], zw[b], zw[c]
+    t_z[n, 0] = za
+    t_z[n, 1] = fx0
+    t_z[n, 2] = fy0
+    t_z[n, 3] = ((zb - za) * dyc - (zc - za) * dyb) / det
+    t_z[n, 4] = (dxb * (zc - za) - dxc * (zb - za)) / det
+    ra = np.floor(za + 0.5)
+    rb = np.floor(zb + 0.5)
+    rc = np.floor(zc + 0.5)
+    t_zlim[n, 0] = np.int64(min(ra, min(rb, rc)))
+    t_zlim[n, 1] = np.int64(max(ra, max(rb, rc)))
+    if want_colour:
+        if flat:
+            s = src[t]
+            for ch in range(4):
+                t_col[n, ch, 0] = flat_col[s, ch] * 255.0
+                t_col[n, ch, 1] = 0.0
+                t_col[n, ch, 2] = 0.0
+        else:
+            for ch in range(4):
+                ca = col[a, ch] * 255.0
+                cb = col[b, ch] * 255.0
+                cc = col[c, ch] * 255.0
+                t_col[n, ch, 0] = ca
+                t_col[n, ch, 1] = ((cb - ca) * dyc - (cc - ca) * dyb) / det
+                t_col[n, ch, 2] = (dxb * (cc - ca) - dxc * (cb - ca)) / det
+    t_state[n] = state
+

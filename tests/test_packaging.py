@@ -55,11 +55,28 @@ def test_wheel_layout(wheel):
     assert top == {"vgxsim"}
 
 
+def test_wheel_ships_the_scenes_models_and_textures(wheel):
+    # an installed user has the shadows program's scenes (and what they name)
+    names = set(zipfile.ZipFile(wheel).namelist())
+    from vgxsim.data import SCENES
+
+    for scene in SCENES:
+        assert f"vgxsim/data/scenes/{scene}.scn" in names
+    for model in ("cube.glo", "floor.glo", "ball.glo", "teapot.glo", "dense_torus.glo.gz",
+                  "teapot_patches.txt"):
+        assert f"vgxsim/data/models/{model}" in names
+    assert "vgxsim/data/textures/checker.rgb" in names
+    assert "vgxsim/formats/scn.py" in names and "vgxsim/kernels/adjacency.py" in names
+
+
 def test_wheel_imports_when_installed(wheel, tmp_path):
     target = tmp_path / "site"
     subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",
                     str(target), str(wheel)], check=True)
     code = ("import vgxsim.kernels, vgxsim.gl, importlib.util, sys\n"
+            "from vgxsim.data import scene_path\n"
+            "from vgxsim.formats.scn import parse_scn\n"
+            "assert len(parse_scn(scene_path('teapot')).models) == 2\n"
             "print(vgxsim.kernels.__file__)\n"
             "spec = importlib.util.find_spec('kernels')\n"
             "print('kernels-origin', spec.origin if spec else None)\n")

@@ -12,24 +12,37 @@ from __future__ import annotations
 
 import numpy as np
 
-from vgxsim import threads
+from vgxsim import coldstart, threads
 from vgxsim.kernels.clip import snap_window
-from vgxsim.kernels.render import (
+from vgxsim.kernels.render import bin_primitives, render_bands
+from vgxsim.kernels.setup import setup_triangles, setup_triangles_states
+from vgxsim.state.codes import (
     CLEAR_COLOUR,
     CLEAR_STENCIL,
     CLEAR_Z,
+    FLAT,
     KIND_CLEAR,
     KIND_FRAGMENTS,
     KIND_TRIANGLE,
-    bin_primitives,
-    render_bands,
+    ROW_SIZE,
+    S_DRAW_BACK,
+    S_DRAW_FRONT,
+    WORK_BLOCKS_COVERED,
+    WORK_FRAGMENTS,
+    WORK_SIZE,
+    WORK_STENCIL_WRITES,
+    WORK_TILES_SKIPPED,
 )
-from vgxsim.kernels.setup import setup_triangles
 from vgxsim.state.derive import derive_states
 from vgxsim.state.planes import Framebuffer
-from vgxsim.state.raster import FLAT, ROW, ROW_SIZE, RasterState
+from vgxsim.state.raster import RasterState
 
-__all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL"]
+__all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL", "WORK_NAMES"]
+
+#: Names of the work counters, in the order of ``CommandBatch.counters``.
+WORK_NAMES = tuple(name for _, name in sorted([
+    (WORK_FRAGMENTS, "fragments"), (WORK_TILES_SKIPPED, "tiles_skipped"),
+    (WORK_BLOCKS_COVERED, "blocks_covered"), (WORK_STENCIL_WRITES, "stencil_writes")]))
 
 # Bands are 2**shift rows, 32 to 256.  Tall bands keep the triangle records a band
 # reads dense in memory (many small triangles are latency-bound on those reads);
@@ -64,15 +77,43 @@ class CommandBatch:
     ----------
     framebuffer : Framebuffer
         Where a flush renders to.
+
+    Attributes
+    ----------
+    edge_mode, general_only : bool
+        Test switches: the edge-function rasterizer; no fast span paths.
+    skip_tiles, cover_blocks : bool
+        Exact work skipping (vgxsim/kernels/tiles.py; on by default): skip tiles
+        whose depth bounds fail the z test for a whole triangle; run tiles fully
+        inside a triangle without edge tests.  Switching either off changes no pixel.
+        Class attributes: set them on ``CommandBatch`` to switch every batch.
+    counters : ndarray, shape (4,), int64
+        Work done since the batch was made or :meth:`reset_counters`, in the order
+        of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
+        covered without edge tests, fragments of passes that may write stencil.
+        :meth:`work` gives them by name.
     """
+
+    skip_tiles = True
+    cover_blocks = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
-        self.edge_mode = False  # test switch: edge-function rasterizer
-        self.general_only = False  # test switch: no fast span paths
+        self.edge_mode = False
+        self.general_only = False
+        self.counters = np.zeros(WORK_SIZE, np.int64)
         self.flushes = 0
         self._allocate()
         self._reset()
+        coldstart.prepare(CommandBatch)  # first batch, empty cache: compile in parallel
+
+    def reset_counters(self) -> None:
+        """Zero the work counters."""
+        self.counters[:] = 0
+
+    def work(self) -> dict[str, int]:
+        """The work counters by name (see ``counters``)."""
+        return {name: int(v) for name, v in zip(WORK_NAMES, self.counters, strict=True)}
 
     def _allocate(self) -> None:
         """The batch's arrays, grown on demand and kept across flushes (a frame of
@@ -190,6 +231,67 @@ class CommandBatch:
             self.ntris = setup_triangles(xf, yf, zw, colv, tris, src, flatv, s, rs.cull, flat,
                                          want_colour, *out, start)
         refs = np.arange(start, self.ntris, dtype=np.int64)
+        # Bin by the rows the triangle can touch inside the raster rectangle, so bands
+        # outside the scissor (a light's scissor rectangle) never see it.
+        box = self.t_box[start:self.ntris]
+        sx0, sx1, sy0, sy1 = rs.scissor
+        y0 = np.maximum(box[:, 2], sy0)
+        y1 = np.minimum(box[:, 3], sy1)
+        y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0) | (box[:, 0] > box[:, 1])] = -1
+        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
+        self._maybe_flush()
+        return self.ntris - start
+
+    def add_triangles_states(self, xf, yf, zw, col, tris, src, flat_col,
+                             states: list[RasterState], tri_state: np.ndarray) -> int:
+        """:meth:`add_triangles` for triangles of several raster states at once.
+
+        Parameters
+        ----------
+        states : list of RasterState
+            All alike except in what only the fragment stage reads (stencil, z and
+            blend functions, masks, cull): one shading model, one subpixel mode.
+        tri_state : ndarray, shape (Nt,), int64
+            Index into ``states`` of each triangle.
+        """
+        nt = tris.shape[0]
+        if nt == 0:
+            return 0
+        if type(self).add_triangles is not _ADD_TRIANGLES:
+            # add_triangles is wrapped (vgxsim.reference.recorder captures every
+            # triangle through it): feed it one state run at a time.
+            cuts = np.flatnonzero(np.diff(tri_state)) + 1
+            bounds = [0, *cuts.tolist(), nt]
+            return sum(self.add_triangles(xf, yf, zw, col, tris[a:b], src[a:b], flat_col,
+                                          states[int(tri_state[a])])
+                       for a, b in zip(bounds[:-1], bounds[1:], strict=True))
+        rs = states[0]
+        seen: dict[int, tuple[int, int]] = {}  # id -> (table index, cull): one look-up each
+        rows = []
+        for r in states:
+            hit = seen.get(id(r))
+            if hit is None:
+                hit = seen[id(r)] = (self.state_index(r), r.cull)
+            rows.append(hit)
+        table = np.array(rows, np.int64).reshape(-1, 2)
+        idx = np.ascontiguousarray(table[tri_state, 0])
+        culls = np.ascontiguousarray(table[tri_state, 1])
+        want_colour = col is not None or flat_col is not None
+        colv = col if col is not None else np.zeros((1, 4))
+        flatv = flat_col if flat_col is not None else np.zeros((1, 4))
+        flat = rs.shademodel == FLAT or col is None
+        end = self.ntris + nt
+        self.t_edge = _grow(self.t_edge, end)
+        self.t_box = _grow(self.t_box, end)
+        self.t_z = _grow(self.t_z, end)
+        self.t_zlim = _grow(self.t_zlim, end)
+        self.t_col = _grow(self.t_col, end)
+        self.t_state = _grow(self.t_state, end)
+        start = self.ntris
+        self.ntris = setup_triangles_states(
+            xf, yf, zw, colv, tris, src, flatv, idx, culls, flat, want_colour,
+            self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state, start)
+        refs = np.arange(start, self.ntris, dtype=np.int64)
         self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
                         self.t_box[start:self.ntris, 3])
         self._maybe_flush()
@@ -275,8 +377,8 @@ class CommandBatch:
             # Single-buffered: frontbuffer/backbuffer select nothing; everything drawn
             # goes to the one colour buffer (and a dummy back plane is never indexed).
             states = states.copy()
-            states[:, ROW["draw_front"]] |= states[:, ROW["draw_back"]]
-            states[:, ROW["draw_back"]] = 0
+            states[:, S_DRAW_FRONT] |= states[:, S_DRAW_BACK]
+            states[:, S_DRAW_BACK] = 0
         derived, tables = derive_states(states, fb.config.stencil, True, fb.z is not None)
         front, back, z, st = fb.kernel_planes()
         height = fb.height
@@ -284,12 +386,14 @@ class CommandBatch:
         shift = band_shift(height, nthreads)
         nbands = (height + (1 << shift) - 1) >> shift
         starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
+        work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
         args = (
             starts, items, shift, height, self.p_kind, self.p_ref,
             self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state,
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
+            self.skip_tiles, self.cover_blocks, work,
         )
         nthreads = min(nthreads, nbands)
         if nthreads == 1:
@@ -303,5 +407,9 @@ class CommandBatch:
             futures = [pool.submit(render_bands, b, nbands, *args) for b in range(nbands)]
             for f in futures:
                 f.result()
+        self.counters += work.sum(axis=0)
         self.flushes += 1
         self._reset()
+
+
+_ADD_TRIANGLES = CommandBatch.add_triangles

@@ -348,6 +348,8 @@ def run_program(
     timeout: float | None = None,
     fps: float = 30,
     overwrite: bool = False,
+    backend: str | None = None,
+    sink_factory=None,
 ) -> int:
     """Run an IRIS GL Python program headless and return its exit status.
 
@@ -372,6 +374,12 @@ def run_program(
         Frame rate of video output.
     overwrite : bool
         Replace an earlier run's output (video file, PNG frames) instead of refusing.
+    backend : {'software', 'opengl'}, optional
+        The backend for the run's windows (default: ``VGXSIM_BACKEND``, else
+        software; see :mod:`vgxsim.backends`).
+    sink_factory : callable, optional
+        ``sink_factory(gid)`` gives window ``gid``'s sink instead of ``frames``
+        (``vgxsim compare`` captures frames with their z and stencil planes).
 
     Returns
     -------
@@ -390,6 +398,7 @@ def run_program(
     The process-wide gl session (:data:`vgxsim.gl._core.session`) is reset before
     and after the run: windows a caller had open are gone afterwards.
     """
+    from vgxsim import backends
     from vgxsim.gl._core import session
     from vgxsim.gl._window import present_windows
 
@@ -403,7 +412,8 @@ def run_program(
     if size is not None:
         session.default_size = (int(size[0]), int(size[1]))
     session.queue = EventQueue(source, max_frames=max_frames)
-    session.sink_factory = recorder
+    session.sink_factory = recorder if sink_factory is None else sink_factory
+    saved_backend = backends.set_backend(backend) if backend is not None else None
     saved_argv, saved_path = sys.argv, list(sys.path)
     sys.argv = [path, *map(str, args)]
     sys.path.insert(0, os.path.dirname(os.path.abspath(path)))
@@ -454,6 +464,8 @@ def run_program(
             recorder.close()
         finally:
             session.reset()
+            if backend is not None:
+                backends.set_backend(saved_backend)
     if recorder.errors:
         for exc in recorder.errors:
             print(f"vgxsim run: {exc}", file=sys.stderr)

@@ -13,7 +13,7 @@ import pytest
 
 from vgxsim.geometry.transform import orthographic
 from vgxsim.gl._core import session
-from vgxsim.state.context import Context
+from vgxsim.pipeline.context import Context
 
 
 def install_window(width: int, height: int, *, rgb: bool = True, double: bool = False,

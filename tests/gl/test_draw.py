@@ -225,7 +225,11 @@ def test_varray_and_vnarray(ctx):
 
 def test_vertex_record_colour_normal_and_lit(ctx, monkeypatch):
     seen = []
-    monkeypatch.setattr(ctx, "draw_arrays", lambda *a, **k: seen.append((a, k)))
+    # What the stream decoder hands the geometry pass for a single primitive.
+    from vgxsim.pipeline import decode
+
+    monkeypatch.setattr(decode, "draw_arrays",
+                        lambda _ctx, _state, _lms, *a, **k: seen.append((a[:5], k)))
     gl.bgnpolygon()
     gl.cpack(0xFF0000FF)
     gl.v3f(0, 0, 0)
@@ -234,6 +238,7 @@ def test_vertex_record_colour_normal_and_lit(ctx, monkeypatch):
     gl.c3f(0, 1, 0)
     gl.v3f(1, 1, 0)  # colour sent last: coloured
     gl.endpolygon()
+    ctx.flush()
     (kind, obj, cols, nrms, lit), _ = seen[0]
     assert kind == "polygon"
     np.testing.assert_array_equal(obj, [[0, 0, 0, 1], [1, 0, 0, 1], [1, 1, 0, 1]])
@@ -244,6 +249,7 @@ def test_vertex_record_colour_normal_and_lit(ctx, monkeypatch):
     gl.bgnpoint()
     gl.v2f(0, 0)
     gl.endpoint()
+    ctx.flush()
     assert seen[-1][0][4].tolist() == [True]
 
 

@@ -11,8 +11,8 @@ import vgxsim.gl as gl
 from vgxsim import DEVICE as D
 from vgxsim.events import EventQueue, EventSource, ScriptExhausted, parse_script
 from vgxsim.gl._core import GLTypeError, GLValueError, session
+from vgxsim.pipeline.context import CLEAR_COLOUR
 from vgxsim.sinks import MemorySink
-from vgxsim.state.context import CLEAR_COLOUR
 
 pytestmark = pytest.mark.usefixtures("fresh_session")  # tests/gl/conftest.py
 

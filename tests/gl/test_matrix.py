@@ -309,3 +309,77 @@ def test_push_and_pop_are_errors_where_there_is_no_stack(ctx, mode):
     gl.mmode(GL.MVIEWING)
     gl.pushmatrix()  # the modelview stack still works
     gl.popmatrix()
+
+
+# -- viewport stack, mapw/mapw2, libgl helpers ---------------------------------------------
+def test_pushviewport_popviewport(ctx):
+    gl.viewport(1, 10, 2, 8)
+    gl.scrmask(3, 4, 5, 6)
+    gl.pushviewport()
+    gl.viewport(0, 3, 0, 3)
+    assert gl.getviewport() == (0, 3, 0, 3)
+    gl.popviewport()
+    assert gl.getviewport() == (1, 10, 2, 8) and gl.getscrmask() == (3, 4, 5, 6)
+    with pytest.raises(gl.GLUsageError, match="underflow"):
+        gl.popviewport()
+    for _ in range(GL.VPSTACKDEPTH):
+        gl.pushviewport()
+    with pytest.raises(gl.GLUsageError, match="overflow"):
+        gl.pushviewport()
+
+
+def test_mapw2_and_mapw_undo_the_objects_transform(ctx):
+    # Window 16 x 12, viewport the whole window.  Object: ortho2(0, 8, 0, 6), so screen
+    # pixel centre x maps to world (x + 0.5) / 2 and y to (y + 0.5) / 2.
+    gl.makeobj(7)
+    gl.ortho2(0, 8, 0, 6)
+    gl.closeobj()
+    before = gl.getmatrix()
+    wx, wy = gl.mapw2(7, 3, 5)
+    assert (wx, wy) == pytest.approx((1.75, 2.75))
+    assert gl.getmatrix() == before  # the object's transform is not left behind
+    # ortho(0, 8, 0, 6, 1, 3): z_ndc -1 is world z = -1 (near), +1 is z = -3 (far).
+    gl.makeobj(8)
+    gl.ortho(0, 8, 0, 6, 1, 3)
+    gl.closeobj()
+    assert gl.mapw(8, 3, 5) == pytest.approx((1.75, 2.75, -1.0, 1.75, 2.75, -3.0))
+
+
+def test_mapw_draws_nothing(ctx):
+    ctx.clear_planes(1, colour=0)  # CLEAR_COLOUR
+    before = ctx.read_rgba().copy()
+    gl.makeobj(9)
+    gl.ortho2(0, 8, 0, 6)
+    gl.cpack(0xFFFFFFFF)
+    gl.clear()
+    gl.rectf(0, 0, 8, 6)
+    gl.closeobj()
+    gl.mapw2(9, 1, 1)
+    assert np.array_equal(ctx.read_rgba(), before)
+
+
+def test_gl_invertmat_and_gl_sincos():
+    m = [2, 0, 0, 0, 0, 4, 0, 0, 0, 0, 5, 0, 1, 2, 3, 1]
+    inv = np.array(gl.gl_invertmat(m)).reshape(4, 4)
+    np.testing.assert_allclose(np.array(m, float).reshape(4, 4) @ inv, np.eye(4), atol=1e-12)
+    with pytest.raises(gl.GLValueError, match="singular"):
+        gl.gl_invertmat([0] * 16)
+    s, c = gl.gl_sincos(300)  # 30 degrees
+    assert (s, c) == pytest.approx((0.5, math.sqrt(3) / 2))
+
+
+def test_screenspace_maps_screen_pixels_to_the_window(fresh_session):
+    gl.prefposition(100, 115, 50, 61)  # a 16 x 12 window at screen (100, 50)
+    gl.winopen("screen")
+    gl.RGBmode()
+    gl.gconfig()
+    gl.cpack(0xFF000000)
+    gl.clear()
+    gl.screenspace()
+    gl.cpack(0xFF0000FF)
+    gl.bgnpoint()
+    gl.v2i(103, 54)  # screen coordinates
+    gl.endpoint()
+    img = np.frombuffer(gl.lrectread(0, 0, 15, 11), dtype=np.uint32).reshape(12, 16)
+    assert [tuple(map(int, p)) for p in np.argwhere(img & 0xFF)] == [(4, 3)]
+    assert gl.getscrmask() == (0, 15, 0, 11)

@@ -155,3 +155,28 @@ def test_script_menu_statement_parses():
     for bad in ("menu", "menu -1", "menu 0 2"):
         with pytest.raises(ScriptError):
             parse_script(bad)
+
+
+def test_frames_and_qtest_leave_a_menu_step_for_dopup():
+    from vgxsim import DEVICE
+
+    p = gl.defpup("one|two")
+    script("click MENUBUTTON\nmenu 2\nkey a")
+    q = session.queue
+    q.qdevice(DEVICE.MENUBUTTON)
+    q.frame_done()  # delivers the click
+    q.frame_done()  # a timer-driven program draws again: the menu step waits
+    assert q.qtest() == DEVICE.MENUBUTTON
+    assert q.qread() == (DEVICE.MENUBUTTON, 1)
+    assert gl.dopup(p) == 2
+    assert q.qread() == (DEVICE.MENUBUTTON, 0)
+
+
+def test_a_blocking_qread_drops_a_menu_step_with_no_menu_up():
+    from vgxsim import DEVICE
+
+    script("menu 2\nkey a")
+    q = session.queue
+    q.qdevice(DEVICE.KEYBD)
+    assert q.qread() == (DEVICE.KEYBD, ord("a"))
+    assert len(q.source) == 0

@@ -186,3 +186,17 @@ def test_sequence_and_argument_errors(win):
     with pytest.raises(GLValueError, match="N_PIXEL_TOLERANCE"):
         gl.setnurbsproperty(99, 1.0)
     assert gl.getnurbsproperty(GL.N_PIXEL_TOLERANCE) == 50.0
+
+
+def test_lit_surface_normals_face_the_light(win):
+    # Diffuse 0.8, no ambient anywhere, a directional light from +z: a surface whose
+    # normal is +z shades to 0.8 * 255 = 204; a normal of -z would give black.
+    gl.lmdef(GL.DEFMATERIAL, 1, [GL.DIFFUSE, 0.8, 0.8, 0.8, GL.AMBIENT, 0, 0, 0, GL.LMNULL])
+    gl.lmdef(GL.DEFLIGHT, 1, [GL.POSITION, 0, 0, 1, 0, GL.LMNULL])
+    gl.lmdef(GL.DEFLMODEL, 1, [GL.AMBIENT, 0, 0, 0, GL.LMNULL])
+    gl.lmbind(GL.MATERIAL, 1)
+    gl.lmbind(GL.LIGHT0, 1)
+    gl.lmbind(GL.LMODEL, 1)
+    surface(flat_grid())
+    img = np.frombuffer(gl.lrectread(0, 0, W - 1, H - 1), dtype=np.uint32).reshape(H, W)
+    assert np.all((img[12:48, 12:48] & 0xFF) == 204)

@@ -90,10 +90,17 @@ def test_runs_become_few_draws(ctx, monkeypatch):
     program = _core.session.objects[1].program
     assert [e[0] for e in program] == ["run"]
     calls = []
-    real = ctx.draw_arrays
-    monkeypatch.setattr(ctx, "draw_arrays",
-                        lambda kind, *a, **k: (calls.append(kind), real(kind, *a, **k)))
+    # What the stream decoder hands the geometry passes: triangle groups are
+    # deferred as one list, lines and points drawn one primitive each.
+    from vgxsim.pipeline import decode
+
+    real_draw, real_defer = decode.draw_arrays, decode.defer_triangles
+    monkeypatch.setattr(decode, "draw_arrays", lambda c, s, lms, kind, *a, **k: (
+        calls.append(kind), real_draw(c, s, lms, kind, *a, **k)))
+    monkeypatch.setattr(decode, "defer_triangles", lambda *a, **k: (
+        calls.append("triangles"), real_defer(*a, **k)))
     gl.callobj(1)
+    ctx.flush()
     # polygon+tmesh+qstrip+rectf+polf+pmv merge into one triangle draw; then the
     # closed line, then both points in one draw.
     assert calls == ["triangles", "closedline", "point"]
@@ -248,10 +255,13 @@ def test_object_errors(ctx):
         gl.makeobj(2)
     with pytest.raises(gl.GLUsageError, match="delobj"):
         gl.delobj(1)
-    gl.v3f("bad", 0, 0)  # recorded; fails when replayed, naming the call
-    gl.closeobj()
+    gl.rectf(1, 1, 3, 3)
     with pytest.raises(gl.GLTypeError, match="v3f"):
-        gl.callobj(1)
+        gl.v3f("bad", 0, 0)  # validated when recorded (issue 11): the object is unchanged
+    gl.closeobj()
+    assert len(_core.session.objects[1].program) == 1
+    gl.callobj(1)
+    assert (ctx.read_rgba()[..., 0] > 0).sum() == 4  # the rectf recorded before it
     with pytest.raises(gl.GLValueError, match="makeobj"):
         gl.makeobj(-1)
     with pytest.raises(gl.GLTypeError, match="callobj"):
@@ -285,7 +295,7 @@ def test_draw_arrays_copies_caller_arrays_before_deferring():
     import numpy as np
 
     from vgxsim.geometry.transform import orthographic
-    from vgxsim.state.context import Context
+    from vgxsim.pipeline.context import Context
 
     ctx = Context(8, 8)
     ctx.matrices.load_projection(orthographic(-0.5, 7.5, -0.5, 7.5, -1.0, 1.0))

@@ -10,7 +10,7 @@ import pytest
 import vgxsim.gl as gl
 from vgxsim import GL
 from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError, session
-from vgxsim.state.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
+from vgxsim.pipeline.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
 
 A, B, C, D = 0x80FF4020, 0x11223344, 0x55667788, 0xFFEEDDCC
 

@@ -12,8 +12,8 @@ import pytest
 import vgxsim.gl as gl
 from vgxsim import GL
 from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError, session
+from vgxsim.pipeline.context import CLEAR_COLOUR
 from vgxsim.sinks import MemorySink, PNGSequenceSink
-from vgxsim.state.context import CLEAR_COLOUR
 
 pytestmark = pytest.mark.usefixtures("fresh_session")  # tests/gl/conftest.py
 

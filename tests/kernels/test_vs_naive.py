@@ -22,16 +22,16 @@ from kernel_helpers import (
 )
 
 from vgxsim.batch import CommandBatch
-from vgxsim.kernels.fragment import (
+from vgxsim.reference.naive import GD_ZMAX, GD_ZMIN
+from vgxsim.state.codes import (
     D_MODE,
     MODE_COLOUR,
     MODE_GENERAL,
     MODE_ZONLY,
     MODE_ZSTENCIL,
     MODE_ZSTENCIL_ADD,
-    derive_states,
 )
-from vgxsim.reference.naive import GD_ZMAX, GD_ZMIN
+from vgxsim.state.derive import derive_states
 from vgxsim.state.raster import (
     BF_MSA,
     BF_SA,

@@ -14,8 +14,8 @@ from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, CommandBatch
 from vgxsim.examples import heidmann1991 as h91
 from vgxsim.geometry.transform import orthographic
 from vgxsim.gl._core import current, session
+from vgxsim.pipeline.context import Context
 from vgxsim.reference.recorder import ClearRecord, TriangleRecord, record_window_triangles
-from vgxsim.state.context import Context
 from vgxsim.state.planes import Framebuffer, PlaneConfig
 from vgxsim.state.raster import FLAT, RasterState
 

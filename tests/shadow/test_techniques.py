@@ -113,7 +113,7 @@ def test_cli_technique(tmp_path):
     assert r.returncode == 0, r.stderr
     assert out.exists()
     r = subprocess.run([sys.executable, "-m", "vgxsim", "shadows", "--technique",
-                        "shadowmap", "--option", "bogus=1", "-o", str(out)],
+                        "shadowmap", "--option", "bogus=1", "-o", str(tmp_path / "t.png")],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "bogus" in r.stderr
 

@@ -77,7 +77,7 @@ def test_image_write_is_atomic(tmp_path, monkeypatch):
     write_image(path, bottom_up_image(seed=1)[..., :3])
     good = path.read_bytes()
 
-    def broken(fh, image, extension):
+    def broken(fh, image, extension, plugin):
         fh.write(b"\x89PNG half")
         raise RuntimeError("disk on fire")
 
@@ -187,3 +187,119 @@ def test_open_sink_chooses_by_spec(tmp_path):
     assert isinstance(gif, VideoSink) and gif.fps == 12
     with pytest.raises(ValueError, match="out.png"):
         open_sink(tmp_path / "out.png")
+
+
+def flat(h, w, rgb):
+    img = np.zeros((h, w, 4), np.uint8)
+    img[..., :3] = rgb
+    img[..., 3] = 255
+    return img
+
+
+def test_gif_is_complete_after_every_frame(tmp_path):
+    path = tmp_path / "live.gif"
+    colours = [(255, 0, 0), (0, 255, 0), (0, 0, 255), (0, 255, 0)]
+    sink = VideoSink(path, fps=10)
+    for n, rgb in enumerate(colours, start=1):
+        sink.write(flat(3, 5, rgb))
+        # read while the sink is still open: every frame so far, exactly
+        got = iio.imread(path, index=None)
+        assert got.shape[:3] == (n, 3, 5)
+        assert [tuple(f[0, 0, :3]) for f in got] == colours[:n]  # repeats kept too
+    sink.close()
+    assert path.read_bytes().endswith(b";")  # the GIF trailer
+
+
+def test_gif_frame_with_more_than_256_colours(tmp_path):
+    img = np.zeros((24, 32, 4), np.uint8)
+    img[..., 0] = np.arange(32 * 24).reshape(24, 32) % 256
+    img[..., 1] = np.arange(32 * 24).reshape(24, 32) // 256 * 80  # 768 colours
+    with VideoSink(tmp_path / "many.gif") as sink:
+        sink.write(img)
+        sink.write(flat(24, 32, (9, 9, 9)))
+    frames = iio.imread(tmp_path / "many.gif", index=None)
+    assert frames.shape[:3] == (2, 24, 32)
+    # quantized to a 256-entry palette: close, not exact; the flat frame exact
+    assert np.abs(frames[0][..., :3].astype(int) - img[::-1, :, :3]).mean() < 8
+    assert (frames[1][..., :3] == 9).all()
+
+
+def test_png_folder_of_an_earlier_run_is_refused_or_replaced(tmp_path):
+    out = tmp_path / "f"
+    out.mkdir()
+    for name in ("frame_0000.png", "frame_0007.png", "win2_frame_0000.png", "notes.txt",
+                 ".frame_0008.png.123.0.tmp"):  # what a killed run was writing
+        (out / name).write_bytes(b"old")
+    with pytest.raises(SinkError, match=r"f already holds 4 frame files.*--overwrite"):
+        PNGSequenceSink(out)
+    assert len(os.listdir(out)) == 5  # refused: nothing touched
+    sink = PNGSequenceSink(out, overwrite=True)
+    assert sorted(os.listdir(out)) == ["notes.txt"]  # every old frame gone at once
+    sink.write(bottom_up_image())
+    assert sorted(os.listdir(out)) == ["frame_0000.png", "notes.txt"]
+
+
+def test_existing_video_is_refused_or_replaced(tmp_path):
+    path = tmp_path / "v.gif"
+    path.write_bytes(b"an earlier movie")
+    with pytest.raises(SinkError, match=r"v\.gif exists.*--overwrite"):
+        VideoSink(path)
+    assert path.read_bytes() == b"an earlier movie"
+    with VideoSink(path, overwrite=True) as sink:
+        sink.write(flat(2, 2, (1, 2, 3)))
+    assert iio.imread(path, index=None).shape[:3] == (1, 2, 2)
+
+
+@pytest.mark.parametrize("suffix", [".gif", ".mp4"])
+def test_full_video_target_fails_when_the_sink_is_made(tmp_path, suffix):
+    if suffix == ".mp4":
+        pytest.importorskip("imageio_ffmpeg")
+    full = tmp_path / f"full{suffix}"
+    full.symlink_to("/dev/full")  # every write: ENOSPC
+    with pytest.raises(SinkError, match=rf"full\{suffix}: No space left on device"):
+        VideoSink(full, overwrite=True)
+
+
+@pytest.mark.parametrize("target", ["file/frames", "/proc/vgxsim-frames"])
+def test_unwritable_frame_folder_fails_when_the_sink_is_made(tmp_path, target):
+    (tmp_path / "file").write_text("a file, not a folder")
+    folder = target if target.startswith("/") else str(tmp_path / target)
+    with pytest.raises(SinkError, match=folder):
+        open_sink(folder)
+
+
+def test_unwritable_video_folder(tmp_path):
+    with pytest.raises(SinkError, match="missing.*does not exist"):
+        VideoSink(tmp_path / "missing" / "v.gif")
+    with pytest.raises(SinkError, match="vgxsim.gif"):
+        VideoSink("/proc/vgxsim.gif")
+
+
+def test_write_image_format_from_the_name(tmp_path):
+    top = bottom_up_image(6, 8)[::-1]
+    write_image(tmp_path / "a.jpg", top)
+    write_image(tmp_path / "a.JPEG", top)
+    write_image(tmp_path / "a.tif", top)
+    write_image(tmp_path / "a.png", top)
+    assert (tmp_path / "a.jpg").read_bytes()[:3] == b"\xff\xd8\xff"  # JPEG SOI marker
+    assert (tmp_path / "a.JPEG").read_bytes()[:3] == b"\xff\xd8\xff"
+    assert (tmp_path / "a.tif").read_bytes()[:4] in (b"II*\x00", b"MM\x00*")
+    assert (tmp_path / "a.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert np.array_equal(iio.imread(tmp_path / "a.tif", plugin="pillow")[..., :4], top)  # lossless
+    with pytest.raises(SinkError, match=r"a\.bmp.*\.png"):
+        write_image(tmp_path / "a.bmp", top)
+    with pytest.raises(SinkError, match=r"a\.png exists"):
+        write_image(tmp_path / "a.png", top, overwrite=False)
+    with pytest.raises(SinkError, match="must end in .png"):
+        write_png(tmp_path / "b.jpg", bottom_up_image())
+    assert not (tmp_path / "a.bmp").exists() and not (tmp_path / "b.jpg").exists()
+
+
+def test_an_empty_placeholder_is_not_an_earlier_output(tmp_path):
+    import tempfile
+
+    fd, tmp = tempfile.mkstemp(suffix=".gif", dir=tmp_path)  # as an atomic writer makes
+    os.close(fd)
+    with VideoSink(tmp) as sink:  # nothing to lose: no --overwrite needed
+        sink.write(flat(2, 2, (7, 7, 7)))
+    assert iio.imread(tmp, index=None).shape[:3] == (1, 2, 2)

@@ -462,7 +462,9 @@ class EventQueue:
 
     def _deliver_due(self) -> None:
         step = self.source.peek()
-        if step is not None and self._is_due(step):
+        # A modal step (a script ``menu`` choice) waits for the call that reads it
+        # (dopup); frames and qtest pass it by.  A blocking qread may still drop it.
+        if step is not None and self._is_due(step) and not getattr(step, "modal", False):
             self._deliver(self.source.pop())
 
     def _deliver(self, step: Step) -> None:

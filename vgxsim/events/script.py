@@ -69,11 +69,14 @@ Popup menus
 takes the next script step if it is a ``menu`` step, whatever its ``after``/``wait``
 (the menu is modal; the user's next action answers it); if the next step is
 anything else, or there is none, ``dopup`` returns -1, as for a menu dismissed
-without a choice.  A ``menu`` step the queue reaches while no menu is up is
-dropped.  Each CHOICE picks an entry of one menu level, the first in the menu
-``dopup`` shows and each further one in the submenu (``%m``) of the entry before:
-an integer is the entry's number as ``setpup`` counts them (1 = first entry, the
-``%t`` title not counted), anything else is compared with the entries' labels
+without a choice.  Frames (``swapbuffers``) and ``qtest`` do not deliver a ``menu``
+step, so a program may draw or poll between reading MENUBUTTON and calling
+``dopup``; only a blocking ``qread`` that reaches it while no menu is up drops it.
+
+Each CHOICE picks an entry of one menu level, the first in the menu ``dopup``
+shows and each further one in the submenu (``%m``) of the entry before.  An
+integer is the entry's number as ``setpup`` counts them (1 = first entry, the
+``%t`` title not counted); anything else is compared with the entries' labels
 (their text without the ``%`` directives, case-sensitive).  ``menu 0`` dismisses
 the menu.  ``click MENUBUTTON`` then ``menu Quit`` is what a user does to choose
 Quit from a program that calls ``dopup`` on ``(MENUBUTTON, 1)``.
@@ -122,6 +125,8 @@ class MenuChoice(Step):
     """
 
     path: tuple[int | str, ...] = ()
+    #: The queue's frames and qtest do not deliver it; it waits for dopup.
+    modal = True
 
 Resolver = Callable[[str], int]
 

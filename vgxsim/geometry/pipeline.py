@@ -79,7 +79,7 @@ def to_clip(obj: np.ndarray, mvp: np.ndarray) -> np.ndarray:
 
 
 def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgba=None,
-                   clip_coords=None) -> int:
+                   clip_coords=None, tri_states=None) -> int:
     """Transform, clip, project, snap and queue triangles.
 
     Parameters
@@ -96,6 +96,9 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
         Per-triangle colour for flat shading (the last vertex's).
     clip_coords : ndarray, shape (N, 4), optional
         Already transformed vertices.
+    tri_states : (list of RasterState, ndarray shape (T,) int64), optional
+        Triangles of several raster states that differ only in what the fragment
+        stage reads (``rs`` is the first): each triangle's index into the list.
 
     Returns
     -------
@@ -116,6 +119,11 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
     if want and (rs.shademodel == FLAT):
         flat = (np.ascontiguousarray(flat_rgba, dtype=np.float64) if flat_rgba is not None
                 else attr[tris[:, 2]])
+    if tri_states is not None:
+        states, per_tri = tri_states
+        return batch.add_triangles_states(xf, yf, zw, out_attr if want else None, out_tris,
+                                          out_src, flat, states,
+                                          np.ascontiguousarray(per_tri[out_src]))
     return batch.add_triangles(xf, yf, zw, out_attr if want else None, out_tris, out_src,
                                flat, rs)
 

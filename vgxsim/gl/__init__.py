@@ -9,6 +9,7 @@ from vgxsim.GL import *  # noqa: F401,F403  (constants, for convenience)
 
 from ._accum import *  # noqa: F401,F403
 from ._color import *  # noqa: F401,F403
+from ._compat import *  # noqa: F401,F403
 from ._core import GLError, GLTypeError, GLUsageError, GLValueError  # noqa: F401
 from ._curves import *  # noqa: F401,F403
 from ._draw import *  # noqa: F401,F403

@@ -98,6 +98,74 @@ def _ints(name: str, args: tuple, n: int) -> tuple[float, ...]:
 
 
 # -- RGBmode -------------------------------------------------------------------------
+_BYTE = tuple(v / 255.0 for v in range(256))  # a colour byte as a [0, 1] float
+
+
+def _cpack_rgba(args: tuple) -> tuple[float, float, float, float]:
+    w = args[0]
+    if type(w) is not int:
+        w = as_int("cpack", args, "abgr", w, wrap=True)
+    w &= 0xFFFFFFFF  # C unsigned long
+    return (_BYTE[w & 0xFF], _BYTE[(w >> 8) & 0xFF], _BYTE[(w >> 16) & 0xFF],
+            _BYTE[w >> 24])
+
+
+def _rgbcolor_rgba(args: tuple) -> tuple[float, float, float, float]:
+    rgb = [min(255, max(0, as_int("RGBcolor", args, n, v))) / 255.0
+           for n, v in zip("rgb", args, strict=True)]
+    return (rgb[0], rgb[1], rgb[2], 1.0)
+
+
+def _float_rgba(name: str, n: int):
+    if n == 3:
+        def rgba(args: tuple) -> tuple:
+            if len(args) == 3:
+                r, g, b = args
+                if (type(r) is float and type(g) is float and type(b) is float
+                        and 0.0 <= r <= 1.0 and 0.0 <= g <= 1.0 and 0.0 <= b <= 1.0):
+                    return (r, g, b, 1.0)  # fast path: in range already
+            return _floats(name, args, 3) + (1.0,)
+        return rgba
+    return lambda args: _floats(name, args, 4)
+
+
+def _int_rgba(name: str, n: int):
+    if n == 3:
+        return lambda args: _ints(name, args, 3) + (1.0,)
+    return lambda args: _ints(name, args, 4)
+
+
+def _colour_call(name: str, rgba_of, doc: str):
+    """An RGB colour call from the function giving its RGBA (also what display objects
+    record)."""
+
+    def body(*args) -> None:
+        ctx = current(name, args)
+        _need_rgb(ctx, name, args)
+        _set_rgba(ctx, rgba_of(args))
+
+    body.__name__ = body.__qualname__ = name
+    body.__doc__ = doc
+    call = gl_function()(body)
+    call.stream_rgba = rgba_of
+    return call
+
+
+c3f = _colour_call("c3f", _float_rgba("c3f", 3),
+                   """Current colour from 3 floats in [0, 1]: ``c3f((r, g, b))`` or
+    ``c3f(r, g, b)``; alpha 1.0, values outside [0, 1] saturate.""")
+c4f = _colour_call("c4f", _float_rgba("c4f", 4),
+                   "Current colour from 4 floats in [0, 1] (r, g, b, a); values saturate.")
+c3i = _colour_call("c3i", _int_rgba("c3i", 3),
+                   "Current colour from 3 ints 0..255 (alpha 255); values saturate.")
+c4i = _colour_call("c4i", _int_rgba("c4i", 4),
+                   "Current colour from 4 ints 0..255 (r, g, b, a); values saturate.")
+c3s = _colour_call("c3s", _int_rgba("c3s", 3),
+                   "As :func:`c3i` (the C form takes shorts).")
+c4s = _colour_call("c4s", _int_rgba("c4s", 4),
+                   "As :func:`c4i` (the C form takes shorts).")
+
+
 @gl_function()
 def cpack(abgr: int) -> None:
     """Set the current colour from one packed word 0xAABBGGRR (cpack(3G)).
@@ -107,9 +175,12 @@ def cpack(abgr: int) -> None:
     """
     args = (abgr,)
     ctx = current("cpack", args)
-    _need_rgb(ctx, "cpack", args)
-    w = as_int("cpack", args, "abgr", abgr, wrap=True)  # C unsigned long
-    _set_rgba(ctx, tuple(((w >> s) & 0xFF) / 255.0 for s in (0, 8, 16, 24)))
+    if not ctx.config.rgb:
+        _need_rgb(ctx, "cpack", args)
+    _set_rgba(ctx, _cpack_rgba(args))
+
+
+cpack.stream_rgba = _cpack_rgba
 
 
 @gl_function()
@@ -121,58 +192,10 @@ def RGBcolor(r: int, g: int, b: int) -> None:
     args = (r, g, b)
     ctx = current("RGBcolor", args)
     _need_rgb(ctx, "RGBcolor", args)
-    rgb = [min(255, max(0, as_int("RGBcolor", args, n, v))) / 255.0
-           for n, v in zip("rgb", args, strict=True)]
-    _set_rgba(ctx, (rgb[0], rgb[1], rgb[2], 1.0))
+    _set_rgba(ctx, _rgbcolor_rgba(args))
 
 
-@gl_function()
-def c3f(*args) -> None:
-    """Current colour from 3 floats in [0, 1]: ``c3f((r, g, b))`` or ``c3f(r, g, b)``;
-    alpha 1.0, values outside [0, 1] saturate."""
-    ctx = current("c3f", args)
-    _need_rgb(ctx, "c3f", args)
-    _set_rgba(ctx, _floats("c3f", args, 3) + (1.0,))
-
-
-@gl_function()
-def c4f(*args) -> None:
-    """Current colour from 4 floats in [0, 1] (r, g, b, a); values saturate."""
-    ctx = current("c4f", args)
-    _need_rgb(ctx, "c4f", args)
-    _set_rgba(ctx, _floats("c4f", args, 4))
-
-
-@gl_function()
-def c3i(*args) -> None:
-    """Current colour from 3 ints 0..255 (alpha 255); values saturate."""
-    ctx = current("c3i", args)
-    _need_rgb(ctx, "c3i", args)
-    _set_rgba(ctx, _ints("c3i", args, 3) + (1.0,))
-
-
-@gl_function()
-def c4i(*args) -> None:
-    """Current colour from 4 ints 0..255 (r, g, b, a); values saturate."""
-    ctx = current("c4i", args)
-    _need_rgb(ctx, "c4i", args)
-    _set_rgba(ctx, _ints("c4i", args, 4))
-
-
-@gl_function()
-def c3s(*args) -> None:
-    """As :func:`c3i` (the C form takes shorts)."""
-    ctx = current("c3s", args)
-    _need_rgb(ctx, "c3s", args)
-    _set_rgba(ctx, _ints("c3s", args, 3) + (1.0,))
-
-
-@gl_function()
-def c4s(*args) -> None:
-    """As :func:`c4i` (the C form takes shorts)."""
-    ctx = current("c4s", args)
-    _need_rgb(ctx, "c4s", args)
-    _set_rgba(ctx, _ints("c4s", args, 4))
+RGBcolor.stream_rgba = _rgbcolor_rgba
 
 
 @gl_function(record=False)

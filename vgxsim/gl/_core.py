@@ -14,6 +14,8 @@ one flat sequence or as separate arguments (``v3f((x, y, z))`` and ``v3f(x, y, z
 
 from __future__ import annotations
 
+import inspect
+import math
 import numbers
 from collections.abc import Sequence
 
@@ -64,9 +66,12 @@ class _Session:
         self.default_size = (640, 512)  # winopen without prefsize (vgxsim run --size)
         self.queue = None  # vgxsim.events.EventQueue, created lazily
         self.sink_factory = None  # callable(gid) -> sink, set by `vgxsim run`
-        self.objects: dict[int, list] = {}  # display objects, by name
+        self.objects: dict[int, object] = {}  # display objects (gl/_objects.py), by name
+        self.next_object = 1  # where genobj starts looking
         self.open_object: int | None = None  # makeobj in progress
-        self.recording = None  # the list calls are recorded into, or None
+        # What recordable calls append (call, args) to while makeobj is open: the
+        # object's recorder (gl/_objects.py), or None in immediate mode.
+        self.recording = None
         self.topics: dict[str, object] = {}  # per-topic state, see topic_state()
 
 
@@ -176,19 +181,81 @@ def check_token(name: str, args: tuple, what: str, v, allowed, family: str = "")
     return iv
 
 
-def gl_function(record: bool = True):
-    """Decorate an IRIS GL call.
+def _arity(func) -> tuple[int, int | float, tuple]:
+    """(fewest, most positional arguments, annotation of each) of a gl call's body."""
+    sig = inspect.signature(func)
+    lo, hi, kinds = 0, 0, []
+    for p in sig.parameters.values():
+        if p.kind is p.VAR_POSITIONAL:
+            return lo, math.inf, tuple(kinds)
+        if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD):
+            hi += 1
+            if p.default is p.empty:
+                lo += 1
+            kinds.append(p.annotation if isinstance(p.annotation, str) else
+                         getattr(p.annotation, "__name__", ""))
+    return lo, hi, tuple(kinds)
 
-    With ``record=True`` the call is stored in the open display object while
-    ``makeobj`` is in effect (IRIS GL compiles drawing and state commands into the
-    object instead of executing them); queries and window calls use ``record=False``.
+
+def _count(n: float) -> str:
+    return f"{n} argument{'s' if n != 1 else ''}"
+
+
+def bind_error(call, args: tuple, kwargs: dict) -> GLTypeError:
+    """The GLTypeError for arguments a call cannot bind (keywords, wrong count)."""
+    name = call.__name__
+    shown = describe(name, args)
+    if kwargs:
+        shown = shown[:-1] + (", " if args else "") + ", ".join(
+            f"{k}={v!r}" for k, v in kwargs.items()) + ")"
+        return GLTypeError(f"{shown}: IRIS GL calls take positional arguments only (the C "
+                           f"call has no keyword {', '.join(map(repr, kwargs))})")
+    lo, hi = call.gl_arity
+    want = _count(lo) if lo == hi else f"{lo} to {_count(hi)}"
+    return GLTypeError(f"{shown}: expected {want}, got {len(args)}")
+
+
+def record_or_refuse(call, args: tuple, kwargs: dict):
+    """Slow path of a recordable call: refuse keywords, else record into the open
+    display object."""
+    if kwargs:
+        raise bind_error(call, args, kwargs)
+    return session.recording.append((call, args))
+
+
+def check_types(call, args: tuple) -> None:
+    """Type-check arguments against the call's annotations (int: an integer, float:
+    a number), as the call itself would, without executing it (display objects
+    validate calls when they are recorded)."""
+    for i, (kind, v) in enumerate(zip(call.gl_types, args, strict=False)):
+        if kind == "int" and not isinstance(v, (numbers.Integral, np.integer)):
+            raise GLTypeError(f"{describe(call.__name__, args)}: argument {i + 1} must be "
+                              f"an int, not {type(v).__name__}")
+        if kind == "float" and (not isinstance(v, (numbers.Real, np.floating, np.integer))):
+            raise GLTypeError(f"{describe(call.__name__, args)}: argument {i + 1} must be "
+                              f"a number, not {type(v).__name__}")
+
+
+def gl_function(record: bool = True):
+    """Decorate an IRIS GL call: bind its arguments in one place.
+
+    The binder is built from the body's signature: keyword arguments (C has none)
+    and a wrong argument count raise :class:`GLTypeError` naming the call and the
+    arguments it got; bodies taking ``*args`` check their own counts.  With
+    ``record=True`` the call is stored in the open display object while ``makeobj``
+    is in effect (IRIS GL compiles drawing and state commands into the object
+    instead of executing them); queries and window calls use ``record=False``.
+    The valid path allocates nothing beyond what the body does.
     """
 
     def wrap(func):
-        def call(*args):
+        lo, hi, kinds = _arity(func)
+
+        def call(*args, **kwargs):
+            if kwargs or not lo <= len(args) <= hi:
+                raise bind_error(call, args, kwargs)
             if record and session.recording is not None:
-                session.recording.append((call, args))
-                return None
+                return session.recording.append((call, args))
             return func(*args)
 
         call.__name__ = func.__name__
@@ -196,6 +263,8 @@ def gl_function(record: bool = True):
         call.__doc__ = func.__doc__
         call.__wrapped__ = func
         call.gl_record = record
+        call.gl_arity = (lo, hi)
+        call.gl_types = kinds
         return call
 
     return wrap

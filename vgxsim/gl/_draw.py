@@ -15,9 +15,16 @@ Argument conventions follow CPython's historical ``gl`` binding
 ``v3f((x, y, z))`` both work; the ``s``/``i`` forms take ints only; ``varray``,
 ``vnarray`` and ``nvarray`` take lists of point tuples.
 
-Every call here is also described to the display-object compiler
-(:mod:`._objects`) by a ``stream`` attribute: a function from the call's arguments
-to a list of *stream operations* (validated exactly as the call itself validates):
+Every call appends to the window's command stream (:mod:`vgxsim.stream`): a vertex
+is one opcode and four floats; the current colour, normal and lit flag are sent as
+one SYNC op before a vertex only when they changed since the last vertex (compared
+by identity: the colour and normal calls store new tuples), and the draw state is
+sent as one STATE op at bgn* only when it changed.  The stream is decoded at a flush
+(:mod:`vgxsim.pipeline.decode`).
+
+Every call here is also described to the display-object recorder (:mod:`._objects`)
+by a ``stream`` attribute: a function from the call's arguments to a list of *stream
+operations* (validated exactly as the call itself validates):
 
 * ``('bgn', prim)`` / ``('end', prim)`` -- prim is 'polygon', 'tmesh', 'qstrip',
   'line', 'closedline', 'point' or 'pmv' (the old-style pmv/pdr/pclos polygon);
@@ -29,9 +36,13 @@ to a list of *stream operations* (validated exactly as the call itself validates
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 
 import numpy as np
+
+from vgxsim.pipeline.decode import drain
+from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, V
+from vgxsim.stream.recorder import MAX_STREAM_OPS
 
 from ._core import (
     GLTypeError,
@@ -43,6 +54,8 @@ from ._core import (
     describe,
     flat_numbers,
     gl_function,
+    record_or_refuse,
+    session,
 )
 
 __all__ = [
@@ -114,44 +127,87 @@ def _xyzw(vals: tuple[float, ...]) -> tuple[float, float, float, float]:
     return vals  # type: ignore[return-value]
 
 
-# -- applying stream operations to a context ------------------------------------------
+# -- appending to the window's stream -------------------------------------------------
+def _restate(ctx, st) -> None:
+    """Record the window's draw state (a STATE op) if it changed since the last one."""
+    regs = ctx.raster
+    if (regs._snapshot is not None and regs._snapshot is st.raster
+            and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
+            and ctx.lighting_serial == st.lighting_serial and ctx.concave is st.concave):
+        return
+    idx = ctx.states.intern(ctx)
+    st.raster = regs._snapshot
+    st.mvp = ctx.matrices._mvp
+    st.depth = ctx.depth_range
+    st.lighting_serial = ctx.lighting_serial
+    st.concave = ctx.concave
+    st.ops.append(STATE)
+    st.ops.append(idx)
+
+
+def sync(ctx, st) -> None:
+    """Send the current colour, normal and lit flag (a SYNC op)."""
+    c, nrm, ls, lms = ctx.colour, ctx.normal, ctx.last_sent, ctx.lmcolor_set
+    ops = st.ops
+    ops.append(SYNC)
+    ops.append(1 if ls == "normal" else 0)
+    ops.append(1 if lms else 0)
+    st.fl.extend(c)
+    st.fl.extend(nrm)
+    st.colour, st.normal, st.sent, st.lmcolor_set = c, nrm, ls, lms
+
+
 def begin(ctx, name: str, args: tuple, prim: str) -> None:
     """Open a primitive; GLUsageError if one is already open."""
     if ctx.prim is not None:
         raise GLUsageError(f"{describe(name, args)}: {OPENER[ctx.prim]}() is still open "
                            f"(call {CLOSER[ctx.prim]}() first)")
+    st = ctx.stream
+    if len(st.ops) > MAX_STREAM_OPS:
+        drain(ctx)
+    _restate(ctx, st)
     ctx.prim = prim
-    ctx.prim_verts = []
-    ctx.prim_swaps = []
+    st.open_ops = len(st.ops)
+    st.open_fl = len(st.fl)
+    st.ops.append(BGN)
+    st.ops.append(KIND_OF[prim])
+
+
+def _outside(name: str, args: tuple, prim, need) -> None:
+    where = "outside bgn*/end*" if prim is None else f"inside {OPENER[prim]}()"
+    hint = f"call {OPENER[need]}() first" if need else "call bgnpolygon(), bgnline(), ... first"
+    raise GLUsageError(f"{describe(name, args)}: vertex {where} ({hint})")
 
 
 def vertex(ctx, name: str, args: tuple, xyzw, need: str | None = None) -> None:
     """Record one vertex with the current colour and normal (per-vertex Gouraud)."""
     prim = ctx.prim
     if prim is None or (need is not None and prim != need):
-        where = "outside bgn*/end*" if prim is None else f"inside {OPENER[prim]}()"
-        hint = f"call {OPENER[need]}() first" if need else "call bgnpolygon(), bgnline(), ... first"
-        raise GLUsageError(f"{describe(name, args)}: vertex {where} ({hint})")
-    ctx.prim_verts.append((xyzw, ctx.colour, ctx.normal, ctx.last_sent == "normal"))
+        _outside(name, args, prim, need)
+    st = ctx.stream
+    if (ctx.colour is not st.colour or ctx.normal is not st.normal
+            or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)
+    st.ops.append(V)
+    st.fl.extend(xyzw)
 
 
 def end(ctx, name: str, args: tuple, prim: str) -> None:
-    """Close the open primitive and draw it with one ``draw_arrays`` call."""
+    """Close the open primitive (drawn at the next flush)."""
     if ctx.prim != prim:
         state = "no primitive is open" if ctx.prim is None else f"{OPENER[ctx.prim]}() is open"
         raise GLUsageError(f"{describe(name, args)}: without {OPENER[prim]}() ({state})")
-    verts, swaps = ctx.prim_verts, ctx.prim_swaps
-    ctx.prim, ctx.prim_verts, ctx.prim_swaps = None, [], []
-    if verts:
-        draw_vertices(ctx, DRAW_KIND[prim], verts, swaps)
+    ctx.prim = None
+    ctx.stream.ops.append(END)
+    if prim in ("line", "closedline"):
+        drain(ctx)  # the line-style position after the line is needed by move/draw
 
 
-def vertex_arrays(verts: Sequence) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(obj (N, 4), colours (N, 4), normals (N, 3), normal_sent_last (N,)) of recorded
-    vertices."""
-    pos, cols, nrms, sent = zip(*verts, strict=True)
-    return (np.array(pos, dtype=np.float64), np.array(cols, dtype=np.float64),
-            np.array(nrms, dtype=np.float64), np.array(sent, dtype=bool))
+def swap(ctx, name: str, args: tuple) -> None:
+    if ctx.prim != "tmesh":
+        raise GLUsageError(f"{describe(name, args)}: swaptmesh outside "
+                           f"bgntmesh()/endtmesh()")
+    ctx.stream.ops.append(SWAP)
 
 
 def lit_mask(ctx, normal_sent: np.ndarray) -> np.ndarray:
@@ -163,12 +219,6 @@ def lit_mask(ctx, normal_sent: np.ndarray) -> np.ndarray:
     return normal_sent
 
 
-def draw_vertices(ctx, kind: str, verts: Sequence, swaps: Sequence[int] = ()) -> None:
-    """Draw recorded vertices as one primitive of ``kind`` (draw_arrays kinds)."""
-    obj, cols, nrms, sent = vertex_arrays(verts)
-    ctx.draw_arrays(kind, obj, cols, nrms, lit_mask(ctx, sent), swaps=list(swaps))
-
-
 def apply_ops(ctx, name: str, args: tuple, ops) -> None:
     """Execute stream operations (see the module docstring) on ``ctx``."""
     for op in ops:
@@ -178,7 +228,7 @@ def apply_ops(ctx, name: str, args: tuple, ops) -> None:
         elif tag == "pv":
             vertex(ctx, name, args, op[1], need="pmv")
         elif tag == "n":
-            ctx.normal = op[1]
+            ctx.normal = tuple(op[1])
             ctx.last_sent = "normal"
         elif tag == "t":
             ctx.texcoord = op[1]
@@ -189,10 +239,7 @@ def apply_ops(ctx, name: str, args: tuple, ops) -> None:
         elif tag == "end":
             end(ctx, name, args, op[1])
         elif tag == "swap":
-            if ctx.prim != "tmesh":
-                raise GLUsageError(f"{describe(name, args)}: swaptmesh outside "
-                                   f"bgntmesh()/endtmesh()")
-            ctx.prim_swaps.append(len(ctx.prim_verts))
+            swap(ctx, name, args)
         else:  # pragma: no cover - programming error
             raise AssertionError(tag)
 
@@ -215,23 +262,62 @@ def stream_call(name: str, parse: Callable[[tuple], list], doc: str):
 # -- primitives ------------------------------------------------------------------------
 def _bgn(prim: str):
     name = OPENER[prim]
+    code = KIND_OF[prim]
 
     def parse(args: tuple) -> list:
         _no_args(name, args)
         return [("bgn", prim)]
 
-    return stream_call(name, parse, f"{name}(): open a {prim} primitive ({name}(3G)).")
+    def call(*args, **kwargs):
+        if session.recording is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = session.windows.get(session.current)
+        if ctx is None or ctx.prim is not None:
+            begin(current(name, args), name, args, prim)  # raises
+        st = ctx.stream
+        if len(st.ops) > MAX_STREAM_OPS:
+            drain(ctx)
+        _restate(ctx, st)
+        ctx.prim = prim
+        ops = st.ops
+        st.open_ops = len(ops)
+        st.open_fl = len(st.fl)
+        ops.append(BGN)
+        ops.append(code)
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = f"{name}(): open a {prim} primitive ({name}(3G))."
+    call.__wrapped__ = call
+    call.gl_record = True
+    call.stream = parse
+    return call
 
 
 def _end(prim: str):
     name = CLOSER[prim]
+    drains = prim in ("line", "closedline")
 
     def parse(args: tuple) -> list:
         _no_args(name, args)
         return [("end", prim)]
 
-    return stream_call(name, parse, f"{name}(): close the {prim} and draw it; "
-                                    f"GLUsageError without {OPENER[prim]}().")
+    def call(*args, **kwargs):
+        if session.recording is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = session.windows.get(session.current)
+        if ctx is None or ctx.prim != prim or drains:
+            end(current(name, args), name, args, prim)
+            return
+        ctx.prim = None
+        ctx.stream.ops.append(END)
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = (f"{name}(): close the {prim} and draw it; GLUsageError without "
+                    f"{OPENER[prim]}().")
+    call.__wrapped__ = call
+    call.gl_record = True
+    call.stream = parse
+    return call
 
 
 bgnpolygon, endpolygon = _bgn("polygon"), _end("polygon")
@@ -260,24 +346,114 @@ swaptmesh = stream_call(
 
 
 # -- vertices ----------------------------------------------------------------------------
+_W = {2: (0.0, 1.0), 3: (1.0,), 4: ()}  # what a vertex call appends after its values
+
+
+# Fast-path tests: n plain floats, all finite (x - x is NaN for NaN and inf).
+def _plain2(s) -> bool:
+    if len(s) != 2:
+        return False
+    x, y = s
+    return type(x) is float and type(y) is float and x - x == 0.0 and y - y == 0.0
+
+
+def _plain3(s) -> bool:
+    if len(s) != 3:
+        return False
+    x, y, z = s
+    return (type(x) is float and type(y) is float and type(z) is float
+            and x - x == 0.0 and y - y == 0.0 and z - z == 0.0)
+
+
+def _plain4(s) -> bool:
+    if len(s) != 4:
+        return False
+    x, y, z, w = s
+    return (type(x) is float and type(y) is float and type(z) is float and type(w) is float
+            and x - x == 0.0 and y - y == 0.0 and z - z == 0.0 and w - w == 0.0)
+
+
+def _never(s) -> bool:
+    return False
+
+
+_PLAIN = {2: _plain2, 3: _plain3, 4: _plain4}
+
+
 def _vertex_call(n: int, suffix: str):
     name = f"v{n}{suffix}"
     integer = suffix in ("s", "i")
+    tail = _W[n]
 
     def parse(args: tuple) -> list:
         return [("v", _xyzw(coords(name, args, n, integer)))]
 
-    def call(*args):
-        # Inlined hot path of parse + apply_ops (one vertex per call).
-        vertex(current(name, args), name, args, _xyzw(coords(name, args, n, integer)))
+    def call(*args, **kwargs):
+        rec = session.recording
+        if rec is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = session.windows.get(session.current)
+        if ctx is None or ctx.prim is None:
+            _outside(name, args, current(name, args).prim, None)
+        seq = args
+        if len(args) == 1:
+            a0 = args[0]
+            if type(a0) is tuple or type(a0) is list:
+                seq = a0
+            elif type(a0) is np.ndarray and not integer and a0.ndim == 1:
+                seq = a0.tolist()
+        vals = seq if fast(seq) else coords(name, args, n, integer)
+        st = ctx.stream
+        if (ctx.colour is not st.colour or ctx.normal is not st.normal
+                or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+            sync(ctx, st)
+        st.ops.append(V)
+        fl = st.fl
+        fl.extend(vals)
+        if tail:
+            fl.extend(tail)
 
+    def call3(*args, **kwargs):
+        # call for v3f/v3d with the fast path inlined (the hottest call there is).
+        if session.recording is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = session.windows.get(session.current)
+        if ctx is None or ctx.prim is None:
+            _outside(name, args, current(name, args).prim, None)
+        seq = args
+        if len(args) == 1:
+            a0 = args[0]
+            if type(a0) is tuple or type(a0) is list:
+                seq = a0
+            elif type(a0) is np.ndarray and a0.ndim == 1:
+                seq = a0.tolist()
+        if len(seq) == 3:
+            x, y, z = seq
+            if not (type(x) is float and type(y) is float and type(z) is float
+                    and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
+                seq = coords(name, args, 3, False)
+        else:
+            seq = coords(name, args, 3, False)
+        st = ctx.stream
+        if (ctx.colour is not st.colour or ctx.normal is not st.normal
+                or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+            sync(ctx, st)
+        st.ops.append(V)
+        fl = st.fl
+        fl.extend(seq)
+        fl.append(1.0)
+
+    if n == 3 and not integer:
+        call = call3  # noqa: F811 - the specialised form replaces the generic one
+    fast = _never if integer else _PLAIN[n]
     kind = "ints" if integer else "numbers"
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): a vertex from {n} {kind}, as {name}(x, ...) or "
                     f"{name}((x, ...)); only between bgn* and end* (v(3G)).")
-    wrapped = gl_function(record=True)(call)
-    wrapped.stream = parse
-    return wrapped
+    call.__wrapped__ = call
+    call.gl_record = True
+    call.stream = parse
+    return call
 
 
 v2s, v2i, v2f, v2d = (_vertex_call(2, s) for s in "sifd")
@@ -285,18 +461,40 @@ v3s, v3i, v3f, v3d = (_vertex_call(3, s) for s in "sifd")
 v4s, v4i, v4f, v4d = (_vertex_call(4, s) for s in "sifd")
 
 
-def _normal_parse(name: str):
+def _normal_call(name: str, doc: str):
     def parse(args: tuple) -> list:
         return [("n", coords(name, args, 3))]
 
-    return parse
+    def call(*args, **kwargs):
+        rec = session.recording
+        if rec is not None or kwargs:
+            return record_or_refuse(call, args, kwargs)
+        ctx = session.windows.get(session.current)
+        if ctx is None:
+            ctx = current(name, args)
+        seq = args
+        if len(args) == 1:
+            a0 = args[0]
+            if type(a0) is tuple:
+                seq = a0
+            elif type(a0) is np.ndarray and a0.ndim == 1:
+                seq = tuple(a0.tolist())
+        if not _plain3(seq):
+            seq = coords(name, args, 3)
+        ctx.normal = seq  # a tuple of 3 floats, new at every call (the stream's sync)
+        ctx.last_sent = "normal"
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = doc
+    call.__wrapped__ = call
+    call.gl_record = True
+    call.stream = parse
+    return call
 
 
-n3f = stream_call("n3f", _normal_parse("n3f"),
-                  "n3f((nx, ny, nz)) or n3f(nx, ny, nz): the current normal; with "
-                  "lmcolor(LMC_COLOR) the following vertices are lit (n3f(3G)).")
-normal = stream_call("normal", _normal_parse("normal"),
-                     "normal((nx, ny, nz)): the obsolete form of n3f.")
+n3f = _normal_call("n3f", "n3f((nx, ny, nz)) or n3f(nx, ny, nz): the current normal; with "
+                          "lmcolor(LMC_COLOR) the following vertices are lit (n3f(3G)).")
+normal = _normal_call("normal", "normal((nx, ny, nz)): the obsolete form of n3f.")
 
 
 def _tex_call(suffix: str):

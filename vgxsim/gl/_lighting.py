@@ -74,6 +74,7 @@ def lmdef(deftype: int, index: int, *rest) -> None:
     """
     args = (deftype, index) + rest
     ctx = current("lmdef", args)
+    ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
     dt = as_int("lmdef", args, "deftype", deftype)
     if dt not in _DEFTYPES:
         raise GLValueError(f"{describe('lmdef', args)}: deftype {dt} is not a valid token "
@@ -117,6 +118,7 @@ def lmbind(target: int, index: int) -> None:
     """
     args = (target, index)
     ctx = current("lmbind", args)
+    ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
     t = as_int("lmbind", args, "target", target)
     if t not in _TARGETS:
         raise GLValueError(f"{describe('lmbind', args)}: target {t} is not a valid token "
@@ -135,11 +137,15 @@ def lmbind(target: int, index: int) -> None:
     if idx and not ctx.lighting.is_defined(deftype, idx):
         raise GLValueError(f"{describe('lmbind', args)}: {what} {idx} is not defined "
                            f"(define it with lmdef({dname}, {idx}, ...))")
-    key = {int(GL.MATERIAL): "material", int(GL.BACKMATERIAL): "backmaterial",
-           int(GL.LMODEL): "lmodel"}[t]
-    ctx.bound[key] = idx
-    if t == int(GL.MATERIAL):
+    ctx.bound[_BOUND_KEY[t]] = idx
+    if t == _MATERIAL:
         ctx.lmcolor_set = False
+
+
+_MATERIAL = int(GL.MATERIAL)
+#: Which ``Context.bound`` entry each non-light lmbind target sets.
+_BOUND_KEY = {int(GL.MATERIAL): "material", int(GL.BACKMATERIAL): "backmaterial",
+              int(GL.LMODEL): "lmodel"}
 
 
 @gl_function()
@@ -153,5 +159,6 @@ def lmcolor(mode: int) -> None:
     """
     args = (mode,)
     ctx = current("lmcolor", args)
+    ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
     ctx.lmcolor_mode = check_token("lmcolor", args, "mode", mode, range(7), "LMC_")
     ctx.lmcolor_set = False

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vgxsim import GL
 from vgxsim.geometry import transform as T
 from vgxsim.state.matrices import STACK_DEPTH, MatrixModeError, MatrixStackError
 
@@ -26,18 +27,23 @@ from ._core import (
     as_angle,
     as_axis,
     as_float,
+    as_int,
     check_token,
     current,
     describe,
     flat_numbers,
     gl_function,
+    topic_state,
 )
 
 __all__ = [
     "mmode", "getmmode", "perspective", "window", "ortho", "ortho2", "lookat",
     "polarview", "rotate", "rot", "translate", "scale", "pushmatrix", "popmatrix",
-    "loadmatrix", "multmatrix", "getmatrix",
+    "loadmatrix", "multmatrix", "getmatrix", "pushviewport", "popviewport", "mapw", "mapw2",
+    "gl_invertmat", "gl_sincos", "screenspace",
 ]
+
+VPSTACKDEPTH = int(GL.VPSTACKDEPTH)
 
 _MMODES = (0, 1, 2, 3)  # MSINGLE, MPROJECTION, MVIEWING, MTEXTURE (gl.h)
 
@@ -315,3 +321,138 @@ def getmatrix(*args) -> list[float]:
     form the historical binding returned; it round-trips with loadmatrix."""
     m = current("getmatrix", args).matrices.get()
     return [float(x) for x in m.reshape(-1)]
+
+
+# -- the viewport stack and screen-to-world mapping (issue 10) ------------------------------
+def _viewport_stack(ctx) -> list:
+    stacks = topic_state("viewport-stacks", dict)  # gid -> [(viewport, scrmask), ...]
+    return stacks.setdefault(id(ctx), [])
+
+
+@gl_function(record=True)
+def pushviewport(*args) -> None:
+    """pushviewport(): save the viewport and the screen mask (pushviewport(3G));
+    the stack holds VPSTACKDEPTH (8) entries."""
+    ctx = current("pushviewport", args)
+    stack = _viewport_stack(ctx)
+    if len(stack) >= VPSTACKDEPTH:
+        raise GLUsageError(f"{describe('pushviewport', args)}: viewport stack overflow "
+                           f"(VPSTACKDEPTH is {VPSTACKDEPTH})")
+    stack.append((tuple(ctx.raster.viewport), tuple(ctx.raster.scrmask)))
+
+
+@gl_function(record=True)
+def popviewport(*args) -> None:
+    """popviewport(): restore the viewport and screen mask saved last."""
+    ctx = current("popviewport", args)
+    stack = _viewport_stack(ctx)
+    if not stack:
+        raise GLUsageError(f"{describe('popviewport', args)}: viewport stack underflow "
+                           f"(popviewport without pushviewport)")
+    vp, mask = stack.pop()
+    ctx.raster.set(viewport=vp, scrmask=mask)
+
+
+def _viewing_of(name: str, args: tuple, obj) -> tuple:
+    """Run display object ``obj`` with drawing turned off and return the transform
+    it leaves (mvp) and the viewport; the matrices are put back afterwards (mapw(3G):
+    obj holds the viewing transformations)."""
+    import copy
+
+    from ._objects import callobj
+
+    ctx = current(name, args)
+    as_int(name, args, "obj", obj)
+    saved = copy.deepcopy(ctx.matrices.__dict__)
+    ctx.flush()  # what was drawn before is drawn
+    hook = ctx.select_hook
+    ctx.select_hook = lambda *a: None  # nothing the object draws reaches the planes
+    try:
+        callobj(obj)
+        ctx.flush()  # decode what the object queued while drawing is still off
+        mvp = ctx.matrices.mvp().copy()
+        vp = tuple(ctx.raster.viewport)
+    finally:
+        ctx.select_hook = hook
+        ctx.matrices.__dict__.update(saved)
+        ctx.matrices._touch()
+    return ctx, mvp, vp
+
+
+def _unproject(ctx, mvp, vp, sx: float, sy: float, zndc: float) -> np.ndarray:
+    l, r, b, t = vp
+    x = 2.0 * (sx - getattr(ctx, "origin", (0, 0))[0] - l + 0.5) / (r - l + 1) - 1.0
+    y = 2.0 * (sy - getattr(ctx, "origin", (0, 0))[1] - b + 0.5) / (t - b + 1) - 1.0
+    try:
+        inv = np.linalg.inv(mvp)
+    except np.linalg.LinAlgError:
+        raise GLValueError("the object's transformation is singular") from None
+    p = np.array([x, y, zndc, 1.0]) @ inv
+    return p[:3] / p[3]
+
+
+@gl_function(record=False)
+def mapw(*args) -> tuple[float, float, float, float, float, float]:
+    """mapw(obj, sx, sy) -> (wx1, wy1, wz1, wx2, wy2, wz2): the line of world points
+    that the transformation in display object ``obj`` maps onto screen point
+    (sx, sy), from the near to the far clipping plane (mapw(3G))."""
+    name = "mapw"
+    _nargs(name, args, 3)
+    sx, sy = (as_float(name, args, w, v) for w, v in zip(("sx", "sy"), args[1:], strict=True))
+    ctx, mvp, vp = _viewing_of(name, args, args[0])
+    try:
+        near = _unproject(ctx, mvp, vp, sx, sy, -1.0)
+        far = _unproject(ctx, mvp, vp, sx, sy, 1.0)
+    except GLValueError as exc:
+        raise GLValueError(f"{describe(name, args)}: {exc}") from None
+    return tuple(float(v) for v in (*near, *far))
+
+
+@gl_function(record=False)
+def mapw2(*args) -> tuple[float, float]:
+    """mapw2(obj, sx, sy) -> (wx, wy): the 2-D world point the transformation in
+    ``obj`` maps onto screen point (sx, sy) (mapw2(3G); for 2-D transforms)."""
+    name = "mapw2"
+    _nargs(name, args, 3)
+    sx, sy = (as_float(name, args, w, v) for w, v in zip(("sx", "sy"), args[1:], strict=True))
+    ctx, mvp, vp = _viewing_of(name, args, args[0])
+    try:
+        p = _unproject(ctx, mvp, vp, sx, sy, -1.0)
+    except GLValueError as exc:
+        raise GLValueError(f"{describe(name, args)}: {exc}") from None
+    return float(p[0]), float(p[1])
+
+
+@gl_function(record=False)
+def gl_invertmat(*args) -> list[float]:
+    """gl_invertmat(m) -> the inverse of Matrix ``m`` as 16 floats (libgl's helper;
+    the C form wrote it to its second argument)."""
+    m = _matrix_arg("gl_invertmat", args)
+    try:
+        inv = np.linalg.inv(m)
+    except np.linalg.LinAlgError:
+        raise GLValueError(f"{describe('gl_invertmat', args)}: the matrix is singular") from None
+    return [float(x) for x in inv.reshape(-1)]
+
+
+@gl_function(record=False)
+def gl_sincos(angle: int) -> tuple[float, float]:
+    """gl_sincos(a) -> (sin, cos) of the Angle ``a`` in tenths of a degree (libgl)."""
+    a = as_angle("gl_sincos", (angle,), angle) * np.pi / 1800.0
+    return float(np.sin(a)), float(np.cos(a))
+
+
+@gl_function(record=True)
+def screenspace(*args) -> None:
+    """screenspace(): draw in absolute screen coordinates (screenspace(3G)): the
+    viewport covers the whole 1280x1024 screen placed at the window's origin, with
+    ``ortho2(-0.5, XMAXSCREEN + 0.5, -0.5, YMAXSCREEN + 0.5)`` loaded, so screen pixel
+    (x, y) is window pixel (x - xorigin, y - yorigin).  The screen mask stays the
+    window (nothing outside it can be drawn)."""
+    from ._window import scrmask, viewport
+
+    ctx = current("screenspace", args)
+    ox, oy = getattr(ctx, "origin", (0, 0))
+    viewport(-ox, int(GL.XMAXSCREEN) - ox, -oy, int(GL.YMAXSCREEN) - oy)
+    scrmask(0, ctx.width - 1, 0, ctx.height - 1)
+    ortho2(-0.5, int(GL.XMAXSCREEN) + 0.5, -0.5, int(GL.YMAXSCREEN) + 0.5)

@@ -73,6 +73,10 @@ class PickState:
 
     def record(self) -> None:
         """Write the name stack as one hit record if a primitive hit since the last."""
+        if self.ctx is not None:
+            # Primitives wait in the command stream until a flush: decode them now,
+            # while the name stack they were drawn under is still in effect.
+            self.ctx.flush()
         if not self.hit:
             return
         self.hit = False
@@ -154,6 +158,7 @@ def _begin(name: str, args: tuple, mode: str) -> tuple[PickState, object]:
     ctx = current(name, args)
     st.mode, st.ctx, st.size = mode, ctx, size
     st.names, st.hit, st.buffer, st.overflow = [], False, [], False
+    ctx.flush()  # what was drawn before pick/gselect is drawn, not hit-tested
     ctx.select_hook = st.test
     return st, ctx
 
@@ -183,8 +188,9 @@ def pick(*args) -> None:
     """
     st, ctx = _begin("pick", args, "pick")
     q = event_queue()
-    cx = q.getvaluator(DEVICE.MOUSEX) - ctx.origin[0]
-    cy = q.getvaluator(DEVICE.MOUSEY) - ctx.origin[1]
+    ox, oy = getattr(ctx, "origin", (0, 0))  # winopen sets it; bare Contexts are at 0, 0
+    cx = q.getvaluator(DEVICE.MOUSEX) - ox
+    cy = q.getvaluator(DEVICE.MOUSEY) - oy
     dx, dy = st.picksize
     ctx.matrices.begin_pick(pick_matrix(cx, cy, dx, dy, ctx.raster.viewport))
 

@@ -36,6 +36,8 @@ __all__ = [
 
 #: VGX answer of every getgdesc inquiry, by gl.h name.
 GDESC: dict[str, int] = {
+    # The screen, not the largest window: headless windows may be up to
+    # MAX_WINDOW_SIZE (16384) a side (gl/_window.py, docs/headless_runs.md).
     "GD_XPMAX": 1280,  # screen width in pixels, 1280x1024 standard [pstech]
     "GD_YPMAX": 1024,  # screen height in pixels [pstech]
     "GD_XMMAX": 340,  # assumed: screen width in mm of a 19-inch 1280x1024 monitor

@@ -16,8 +16,9 @@ from __future__ import annotations
 import math
 
 from vgxsim import GL
-from vgxsim.state.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
+from vgxsim.pipeline.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
 from vgxsim.state.planes import ZMAX, ZMIN
+from vgxsim.state.registers import StencilRegister
 
 from ._color import packed_colour
 from ._core import (
@@ -41,6 +42,7 @@ __all__ = [
 ]
 
 _U32 = 0xFFFFFFFF
+_new_tuple = tuple.__new__
 _CMP = range(8)  # ZF_*, SF_*, AF_*: NEVER 0 .. ALWAYS 7
 _STOPS = range(6)  # ST_KEEP 0 .. ST_INVERT 5
 _SHORT_MAX = 0x7FFF
@@ -80,7 +82,10 @@ def zfunction(func: int) -> None:
 def zwritemask(mask: int) -> None:
     """Which z bits are written (zwritemask(3G)); 0 keeps z while still testing it."""
     ctx = current("zwritemask", (mask,))
-    ctx.raster.set(zwritemask=_u32("zwritemask", (mask,), "mask", mask))
+    regs = ctx.raster
+    regs.zwritemask = (mask if type(mask) is int else _u32("zwritemask", (mask,), "mask", mask)
+                       ) & _U32
+    regs._snapshot = None
 
 
 @gl_function()
@@ -162,18 +167,29 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
     Enabling without stencil planes (stensize 0) is stored but has no effect: the
     manual allows stencil only where planes exist, and the kernels skip the test.
     """
+    ctx = current("stencil", (enable, ref, func, mask, fail, pass_, zpass))
+    if (enable and isinstance(enable, int) and isinstance(ref, int) and isinstance(func, int)
+            and isinstance(mask, int) and isinstance(fail, int) and isinstance(pass_, int)
+            and isinstance(zpass, int) and 0 <= func <= 7 and 0 <= fail <= 5
+            and 0 <= pass_ <= 5 and 0 <= zpass <= 5):
+        # Fast path (ints or GL tokens, valid values): the checks below, inlined.
+        regs = ctx.raster
+        # tuple.__new__: the NamedTuple's own __new__ costs about 1 us.
+        regs.stencil = _new_tuple(StencilRegister,
+                                  (True, ref & _U32, func, mask & _U32, fail, pass_, zpass))
+        regs._snapshot = None
+        return
     args = (enable, ref, func, mask, fail, pass_, zpass)
-    ctx = current("stencil", args)
     on = as_int("stencil", args, "enable", enable) != 0
     if not on:
-        ctx.raster.set(stencil=(False,) + tuple(ctx.raster.stencil[1:]))
+        ctx.raster.set(stencil=ctx.raster.stencil._replace(enable=False))
         return
     r = _u32("stencil", args, "ref", ref)
     fn = check_token("stencil", args, "func", func, _CMP, "SF_")
     m = _u32("stencil", args, "mask", mask)
     ops = [check_token("stencil", args, what, v, _STOPS, "ST_")
            for what, v in (("fail", fail), ("pass", pass_), ("zpass", zpass))]
-    ctx.raster.set(stencil=(True, r, fn, m, ops[0], ops[1], ops[2]))
+    ctx.raster.set(stencil=StencilRegister(True, r, fn, m, ops[0], ops[1], ops[2]))
 
 
 @gl_function()
@@ -206,8 +222,11 @@ def wmpack(mask: int) -> None:
     only, ``wmpack(0)`` no colour at all."""
     args = (mask,)
     ctx = current("wmpack", args)
-    _need_rgb(ctx, "wmpack", args)
-    ctx.raster.set(wmpack=_u32("wmpack", args, "mask", mask))
+    if not ctx.config.rgb:
+        _need_rgb(ctx, "wmpack", args)
+    regs = ctx.raster
+    regs.wmpack = (mask if type(mask) is int else _u32("wmpack", args, "mask", mask)) & _U32
+    regs._snapshot = None
 
 
 @gl_function()

@@ -1,6 +1,6 @@
 """IRIS GL window and configuration calls: winopen, gconfig, swapbuffers, viewport ...
 
-Headless windows.  A window is a :class:`~vgxsim.state.context.Context`; nothing is
+Headless windows.  A window is a :class:`~vgxsim.pipeline.context.Context`; nothing is
 shown on a display.  Window-manager requests that only matter on a screen
 (``foreground``, ``noport``, ``noborder``, ``iconsize``, ``icontitle``, ``winmove``)
 are validated and recorded but change no pixels.
@@ -40,7 +40,7 @@ from dataclasses import replace
 import numpy as np
 
 from vgxsim import DEVICE, GL
-from vgxsim.state.context import Context, replace_config
+from vgxsim.pipeline.context import Context, replace_config
 from vgxsim.state.planes import MAX_STENCIL_PLANES
 
 from . import _events

@@ -16,7 +16,13 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
-from vgxsim.state.raster import (
+from vgxsim.state.codes import (
+    AC_ACCUMULATE,
+    AC_ADD,
+    AC_CLEAR,
+    AC_CLEAR_ACCUMULATE,
+    AC_MULT,
+    AC_RETURN,
     BF_DA,
     BF_DC,
     BF_MDA,
@@ -36,8 +42,8 @@ from vgxsim.state.raster import (
     OP_KEEP,
     OP_REPLACE,
     OP_ZERO,
-    RasterState,
 )
+from vgxsim.state.raster import RasterState
 
 __all__ = [
     "AC_ACCUMULATE",
@@ -68,7 +74,6 @@ Z_BITS = 24
 Z_MASK = (1 << Z_BITS) - 1
 COLOR_MASK = 0xFFFFFFFF
 
-AC_CLEAR, AC_ACCUMULATE, AC_CLEAR_ACCUMULATE, AC_RETURN, AC_MULT, AC_ADD = range(6)
 ACC_MIN, ACC_MAX = -32768, 32767
 
 

@@ -188,13 +188,17 @@ def orbit(camera: Camera, rotate: tuple[float, float] = (0.0, 0.0),
     az = math.atan2(d[0], d[2]) - math.radians(rotate[0])
     el = math.asin(max(-1.0, min(1.0, d[1] / r))) + math.radians(rotate[1])
     el = max(-math.radians(89.0), min(math.radians(89.0), el))
-    r = max(r - dolly, 1e-3 * r)
-    d = r * np.array([math.cos(el) * math.sin(az), math.sin(el), math.cos(el) * math.cos(az)])
+    if rotate[0] or rotate[1] or dolly:  # (untouched otherwise: no rounding of the eye)
+        r = max(r - dolly, 1e-3 * r)
+        d = r * np.array([math.cos(el) * math.sin(az), math.sin(el),
+                          math.cos(el) * math.cos(az)])
     forward = -d / r
     right = np.cross(forward, [0.0, 1.0, 0.0])
     right /= np.linalg.norm(right)
     up = np.cross(right, forward)
     shift = translate[0] * right + translate[1] * up
+    if not (translate[0] or translate[1] or rotate[0] or rotate[1] or dolly):
+        return camera
     tgt = tgt + shift
     return replace(camera, eye=tuple((tgt + d).tolist()), target=tuple(tgt.tolist()))
 
@@ -263,6 +267,20 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
     ViewpointInShadowWarning
         When the eye is inside a shadow volume (README, Bugs).
     """
+    scene = scene if scene is not None else default_scene()
+    return _render_views(scene, [scene.camera], mode=mode, size=size, light=light, soft=soft,
+                         seed=seed, edges=edges, subpixel=subpixel,
+                         display_objects=display_objects, signs=signs,
+                         on_soft_frame=on_soft_frame, technique=technique,
+                         technique_options=technique_options)[0]
+
+
+def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
+                  size: tuple[int, int], light: int, soft: int | str, seed: int, edges: str,
+                  subpixel: bool, display_objects: bool, signs: str,
+                  on_soft_frame: Callable[[int, np.ndarray], None] | None,
+                  technique=None, technique_options: dict | None = None) -> list[Frame]:
+    """One window, one program set-up, one frame per camera (display objects made once)."""
     from vgxsim.gl import (
         TRUE,
         prefsize,
@@ -277,13 +295,7 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
     )
     from vgxsim.gl._core import session
 
-    scene = scene if scene is not None else default_scene()
     frames = _frames_for(soft)
-    notes = tuple(f"the viewpoint is inside the shadow of light {e.light} ({e.light_name}) "
-                  f"cast by {e.caster}: z-pass stencil counts are off by one where that "
-                  "volume reaches" for e in eye_in_shadow(scene))
-    for note in notes:
-        warnings.warn(note, ViewpointInShadowWarning, stacklevel=2)
     planes: dict[int, np.ndarray] = {}
     tech = None
     if technique is not None:
@@ -301,37 +313,49 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
     previous = session.current
     prefsize(w, h)
     gid = winopen("shadows")
+    out = []
     try:
         prog.setup(accumulate=frames > 0)
         if subpixel:
             gl_subpixel(TRUE)
-        if frames:
-            callback = None
-            if on_soft_frame is not None:
-                def callback(n: int) -> None:
-                    on_soft_frame(n, read_pixels("back")[::-1].copy())
-            accumulate(prog, random_offsets(scene, frames, seed), callback)
-        else:
-            prog.DrawFrame()
-        swapbuffers()
-        colour = read_pixels("front")[::-1].copy()
-        depth = read_pixels("front", "z")[::-1].copy()
-        zero = tech.lit_value(prog) if tech is not None and mode == "shadows" else (
-            prog.MYZERO) if mode != "mask" else (
-            (1 << (prog.stencil_bits - 1)) | (1 << (prog.stencil_bits - 2)))
+        for cam in cameras:
+            view = replace(scene, camera=cam)
+            notes = tuple(f"the viewpoint is inside the shadow of light {e.light} "
+                          f"({e.light_name}) cast by {e.caster}: z-pass stencil counts are off "
+                          "by one where that volume reaches" for e in eye_in_shadow(view))
+            for note in notes:
+                warnings.warn(note, ViewpointInShadowWarning, stacklevel=3)
+            prog.scene = view
+            prog.viewing()
+            planes.clear()
+            if frames:
+                callback = None
+                if on_soft_frame is not None:
+                    def callback(n: int) -> None:
+                        on_soft_frame(n, read_pixels("back")[::-1].copy())
+                accumulate(prog, random_offsets(scene, frames, seed), callback)
+            else:
+                prog.DrawFrame()
+            swapbuffers()
+            colour = read_pixels("front")[::-1].copy()
+            depth = read_pixels("front", "z")[::-1].copy()
+            zero = tech.lit_value(prog) if tech is not None and mode == "shadows" else (
+                prog.MYZERO) if mode != "mask" else (
+                (1 << (prog.stencil_bits - 1)) | (1 << (prog.stencil_bits - 2)))
+            stencil = (np.stack([planes[i] for i in sorted(planes)]) if planes
+                       else np.zeros((0, h, w), np.uint8))
+            out.append(Frame(colour, depth, stencil, zero, notes))
     finally:
         prog.teardown()
         winclose(gid)
         if previous is not None and previous in session.windows:
             winset(previous)
-    stencil = (np.stack([planes[i] for i in sorted(planes)]) if planes
-               else np.zeros((0, h, w), np.uint8))
-    return Frame(colour, depth, stencil, zero, notes)
+    return out
 
 
 def render_spin(scene: Scene | None, frames: int, **kw) -> list[np.ndarray]:
     """The original's continued spin: ``frames`` frames, the camera turned by
-    360 / frames degrees of azimuth each.
+    360 / frames degrees of azimuth each, in one window.
 
     Parameters
     ----------
@@ -347,20 +371,22 @@ def render_spin(scene: Scene | None, frames: int, **kw) -> list[np.ndarray]:
     scene = scene if scene is not None else default_scene()
     if frames < 1:
         raise ValueError(f"frames must be >= 1, not {frames}")
-    out = []
+    opts = dict(mode="shadows", size=(640, 512), light=0, soft=0, seed=1991,
+                edges="silhouette", subpixel=False, display_objects=True, signs="screen",
+                on_soft_frame=None, technique=None, technique_options=None)
+    opts.update(kw)
+    cams = [orbit(scene.camera, rotate=(360.0 * k / frames, 0.0)) for k in range(frames)]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ViewpointInShadowWarning)
-        for k in range(frames):
-            cam = orbit(scene.camera, rotate=(360.0 * k / frames, 0.0))
-            out.append(render(replace(scene, camera=cam), **kw).colour)
-    return out
+        return [f.colour for f in _render_views(scene, cams, **opts)]
 
 
 def write_image(path: str | os.PathLike, colour: np.ndarray) -> None:
-    """Write an (H, W, 4) or (H, W, 3) uint8 image, top row first, atomically, as RGB
-    (the format follows the suffix: .png, .jpg, .rgb ...)."""
-    from vgxsim.formats.atomic import atomic_path
-
+    """Write an (H, W, 4) or (H, W, 3) uint8 image, top row first, atomically, as RGB;
+    the format follows the suffix (.png, .jpg/.jpeg, .tif/.tiff through
+    :func:`vgxsim.sinks.images.write_image`; .rgb/.sgi as an SGI image), any other
+    suffix is refused.  An existing file is replaced (the command line checks
+    ``--overwrite`` before it renders)."""
     rgb = np.ascontiguousarray(np.asarray(colour, np.uint8)[..., :3])
     path = os.fspath(path)
     if path.lower().endswith((".rgb", ".sgi")):
@@ -368,20 +394,19 @@ def write_image(path: str | os.PathLike, colour: np.ndarray) -> None:
 
         write_rgb(path, rgb)
         return
-    import imageio.v3 as iio
+    from vgxsim.sinks.images import write_image as write_any
 
-    with atomic_path(path) as tmp:
-        iio.imwrite(tmp, rgb)
+    write_any(path, rgb, overwrite=True)
 
 
 def write_animation(path: str | os.PathLike, frames: Sequence[np.ndarray],
                     fps: float = 15.0) -> None:
     """Write frames (each (H, W, 4) uint8, top row first) as .gif or .mp4, atomically."""
-    from vgxsim.formats.atomic import atomic_path
+    from vgxsim.sinks.atomic import atomic_path
     from vgxsim.sinks.frames import VideoSink
 
     with atomic_path(path) as tmp:
-        sink = VideoSink(tmp, fps=fps)
+        sink = VideoSink(tmp, fps=fps, overwrite=True)  # tmp: atomic_path's own new file
         for img in frames:
             sink.write(np.ascontiguousarray(img[::-1]))  # sinks take framebuffer order
         sink.close()

@@ -9,12 +9,15 @@ images from a shell script" (README) are what remains here, headless::
                    [--rotate AZ,EL] [--translate X,Y] [--dolly D] [--spin N] [--fps F]
                    [--subpixel on|off] [--edges silhouette|all] [--signs screen|article]
                    [--technique NAME] [--option KEY=VALUE ...]
+                   [--scheduler ADDRESS | --local] [--workers N]
     vgxsim convert MESH OUT [-f] [--normals none|face|vertex]
 
 SCENE is a ``.scn`` file or the name of a shipped scene (cubes, balls,
 textured_floor, dense, teapot); without it, the three cubes.  Errors in a scene or
 model name the file and line and exit with status 1; nothing is written then.
-Outputs are written atomically.
+Outputs are written atomically.  ``--spin`` and ``--soft`` run as Dask tasks
+(:mod:`vgxsim.farm`: an embedded LocalCluster, or ``--scheduler``; the same pixels);
+``--local`` keeps them in this process, with the soft shadows' intermediate images.
 """
 
 from __future__ import annotations
@@ -88,7 +91,8 @@ def add_parsers(sub, size_type, positive_int) -> None:
                          "intermediate results are written after 1, 2, 4, 8, ... frames")
     sh.add_argument("--seed", type=int, default=1991, help="jitter random seed (default 1991)")
     sh.add_argument("--rotate", type=_pair, default=(0.0, 0.0), metavar="AZ,EL",
-                    help="turn the view: degrees of azimuth and elevation (trackball)")
+                    help="turn the view: degrees of azimuth and elevation (trackball); "
+                         "negative first: --rotate=-30,10")
     sh.add_argument("--translate", type=_pair, default=(0.0, 0.0), metavar="X,Y",
                     help="shift the view right and up, in scene units")
     sh.add_argument("--dolly", type=float, default=0.0, metavar="D",
@@ -114,6 +118,12 @@ def add_parsers(sub, size_type, positive_int) -> None:
                          "true/false and none are converted)")
     sh.add_argument("--no-cache", action="store_true",
                     help="rebuild model adjacency instead of using the cache")
+    sh.add_argument("--overwrite", action="store_true",
+                    help="replace an existing output file (without it, one is refused "
+                         "before anything is drawn)")
+    from vgxsim.farm.command import add_scheduler_options
+
+    add_scheduler_options(sh)  # where --spin frames and --soft samples run
 
     cv = sub.add_parser(
         "convert", help="convert a mesh (OBJ, STL, PLY, OFF, GLB, .glo) to .glo or a cache",
@@ -127,6 +137,8 @@ def add_parsers(sub, size_type, positive_int) -> None:
     cv.add_argument("--normals", choices=("none", "face", "vertex"), default="none",
                     help="normals to store in the .glo (default none: one per polygon, "
                          "computed when drawn)")
+    cv.add_argument("--overwrite", action="store_true",
+                    help="replace an existing OUT (without it, one is refused)")
 
 
 def _progress(total: int):
@@ -181,6 +193,10 @@ def run_shadows(ns: argparse.Namespace) -> int:
     if not os.path.isdir(folder):
         print(f"{prog}: the output folder {folder} does not exist", file=sys.stderr)
         return 2
+    problem = _output_problem(out, ns.overwrite)
+    if problem:
+        print(f"{prog}: {problem}", file=sys.stderr)
+        return 2
     try:
         scene = api.load_scene(ns.scene, use_cache=not ns.no_cache)
     except FormatError as exc:
@@ -207,41 +223,49 @@ def run_shadows(ns: argparse.Namespace) -> int:
     kw = dict(mode=ns.mode, size=ns.size, light=ns.light, seed=ns.seed, edges=ns.edges,
               subpixel=ns.subpixel, signs=ns.signs)
     if ns.technique is not None:
-        kw.update(technique=ns.technique, technique_options=options)
-    from .techniques import TechniqueError
+        from .techniques import TechniqueError, make
 
-    if ns.technique is not None:
         try:
-            from .techniques import make
-
             make(ns.technique, **options)
         except TechniqueError as exc:
             print(f"{prog}: --technique {ns.technique}: {exc}", file=sys.stderr)
             return 2
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", api.ViewpointInShadowWarning)
-        if ns.spin:
-            frames = api.render_spin(scene, ns.spin, soft=soft, **kw)
-            api.write_animation(out, frames, ns.fps)
-            what = f"{ns.spin} frames"
-        else:
-            bar = _progress(soft) if soft else None
-            checkpoints = {1 << k for k in range(16)}
+        kw.update(technique=ns.technique, technique_options=options)
+    farmed = bool(ns.spin or soft) and not ns.local
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", api.ViewpointInShadowWarning)
+            if farmed:  # vgxsim.farm: the same arrays, computed as Dask tasks
+                from vgxsim.farm.command import run_farmed_shadows
 
-            def intermediate(n: int, colour) -> None:
-                if bar is not None:
-                    bar.update(1)
-                if n in checkpoints and n < soft:  # README: "intermediate results"
-                    api.write_image(out, colour)
+                result = run_farmed_shadows(ns, scene, soft, kw)
+            if ns.spin:
+                frames = result if farmed else api.render_spin(scene, ns.spin, soft=soft,
+                                                               **kw)
+                api.write_animation(out, frames, ns.fps)
+                what = f"{ns.spin} frames"
+            else:
+                bar = _progress(soft) if soft and not farmed else None
+                checkpoints = {1 << k for k in range(16)}
 
-            try:
-                frame = api.render(scene, soft=soft,
-                                   on_soft_frame=intermediate if soft else None, **kw)
-            finally:
-                if bar is not None:
-                    bar.close()
-            api.write_image(out, frame.colour)
-            what = f"{soft} soft-shadow frames" if soft else f"mode {ns.mode}"
+                def intermediate(n: int, colour) -> None:
+                    if bar is not None:
+                        bar.update(1)
+                    if n in checkpoints and n < soft:  # README: "intermediate results"
+                        api.write_image(out, colour)
+
+                try:
+                    frame = result if farmed else api.render(
+                        scene, soft=soft, on_soft_frame=intermediate if soft else None, **kw)
+                finally:
+                    if bar is not None:
+                        bar.close()
+                api.write_image(out, frame.colour)
+                what = f"{soft} soft-shadow frames" if soft else f"mode {ns.mode}"
+    except (OSError, ImportError, ValueError) as exc:
+        # e.g. a read-only folder, or .mp4 without imageio-ffmpeg: nothing half-written
+        print(f"{prog}: cannot write {out}: {exc}", file=sys.stderr)
+        return STATUS_BAD_INPUT
     for w in caught:
         if issubclass(w.category, api.ViewpointInShadowWarning):
             print(f"{prog}: warning: {w.message}", file=sys.stderr)
@@ -251,11 +275,29 @@ def run_shadows(ns: argparse.Namespace) -> int:
     return 0
 
 
+def _output_problem(path: str, overwrite: bool) -> str | None:
+    """Why ``path`` cannot be written (the rule of every vgxsim output: an existing
+    file is replaced only with --overwrite; the target is tried before any work),
+    or None."""
+    from vgxsim.sinks import SinkError
+    from vgxsim.sinks.images import check_writable_file
+
+    try:
+        check_writable_file(path, overwrite)
+    except SinkError as exc:
+        return str(exc).replace("(overwrite=True) ", "")
+    return None
+
+
 def run_convert(ns: argparse.Namespace) -> int:
     """Carry out ``vgxsim convert``; returns the exit status."""
     from vgxsim.formats import FormatError
     from vgxsim.formats.convert import convert
 
+    problem = _output_problem(ns.out, ns.overwrite)
+    if problem:
+        print(f"vgxsim convert: {problem}", file=sys.stderr)
+        return 2
     try:
         model = convert(ns.mesh, ns.out, flip=ns.flip, normals=ns.normals)
     except FormatError as exc:

@@ -231,16 +231,20 @@ class Shadows:
         """One object's polygons (README: the .glo format "represents objects as a
         series of gl bgnpolygon/v3f/endpolygon calls"), with a normal per face or,
         where the model has them, per vertex."""
-        verts, vn = obj.vertices, obj.vertex_normals
-        if vn is None:
-            for f, poly in enumerate(obj.polygons):
+        # Python lists: a call per vertex is the front end's cost, numpy scalars add to it
+        verts = obj.vertices.tolist()
+        polys = obj.polygons.tolist()
+        if obj.vertex_normals is None:
+            normals = obj.normals.tolist()
+            for f, poly in enumerate(polys):
                 bgnpolygon()
-                n3f(obj.normals[f])
+                n3f(normals[f])
                 for vi in poly:
                     v3f(verts[vi])
                 endpolygon()
         else:
-            for poly in obj.polygons:
+            vn = obj.vertex_normals.tolist()
+            for poly in polys:
                 bgnpolygon()
                 for vi in poly:
                     n3f(vn[vi]); v3f(verts[vi])

@@ -18,13 +18,15 @@ BVH, :mod:`vgxsim.kernels.bvh`):
 * the **visible triangle**: the nearest scene triangle with ``0 <= t <= 1`` (equal t:
   the lowest index), its object and world point;
 * per light, **lit**: the segment from the visible point P to the light meets no
-  caster triangle other than P's own, leaving out the first and last
-  ``eps * R`` world units of it (R: the scene's radius about the origin, at least 1;
-  about 1e-6 units for the default scene) -- the definition of a hard shadow
-  (article: "The volume of space behind the triangle ... is in shadow").  Point and
-  spot lights use their position (a spot's cone limits its light, not its shadow); a
-  directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a direction toward
-  the light) uses ``L = P + (4 R + 1) * unit(direction)``, beyond every caster;
+  caster triangle other than P's own, leaving out the first and last ``offset``
+  world units of it (:func:`segment_scales`: ``eps`` times the scene's size plus
+  1e-13 times its largest coordinate, so a scene moved far from the origin keeps
+  its shadows; 2e-6 units for the default scene) -- the definition of a hard
+  shadow (article: "The volume of space behind the triangle ... is in shadow").
+  Point and spot lights use their position (a spot's cone limits its light, not its
+  shadow); a directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a
+  direction toward the light) uses ``L = P + far * unit(direction)``, ``far``
+  reaching past every caster;
 * per light, **occluders**: how many distinct caster objects that segment crosses;
 * per light, **layers**: how many light-facing caster triangles it crosses (facing:
   ``N . (L - v0) > 0``, as :meth:`Polyhedron.facing`; ``N . direction > 0`` for
@@ -65,6 +67,12 @@ moved, in its own depth plane, to where the rasterizer snaps it
 (:func:`vgxsim.kernels.clip.snap_window`, docs/numeric_model.md section 2), so the
 reference sees the same triangles as the rasterizer; ``lit``, ``occluders`` and
 ``layers`` then describe the snapped scene and ``crossings`` the snapped faces.
+Eye rays see the pieces the rasterizer draws (its own transform, clipper and snap,
+:func:`_rasterized`), tested in window space with its exact integer edge functions
+and tie rule (numeric_model section 3), t taken from each piece's plane: a pixel
+centre exactly on a snapped edge is decided as the rasterizer decides it, not by
+rounding.  What remains different
+from a stencil is depth: the rasterizer compares 24-bit z, this compares float64 t.
 """
 
 from __future__ import annotations
@@ -75,9 +83,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from vgxsim import threads as _threads
-from vgxsim.kernels.bvh import BVH, build_bvh
-from vgxsim.kernels.clip import COORD_LIMIT, ONE, snap_window
-from vgxsim.kernels.raycast import closest_hits, count_crossings, shadow_segments
+from vgxsim.geometry.pipeline import GUARD_PIXELS, to_clip
+from vgxsim.kernels.bvh import BVH, build_arrays, split_references
+from vgxsim.kernels.clip import COORD_LIMIT, ONE, clip_triangles, project_snap, snap_window
+from vgxsim.kernels.raycast import Window, closest_hits, count_crossings, shadow_segments
 
 from .scene import Scene, shadow_faces
 
@@ -316,24 +325,75 @@ def snap_to_window(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
     clip = v @ mvp
     x, y, z, w = clip[:, 0], clip[:, 1], clip[:, 2], clip[:, 3]
     fin = v[:, 3] == 1.0
+    hx, hy = width / 2.0, height / 2.0
     with np.errstate(divide="ignore", invalid="ignore"):
-        hx, hy = width / 2.0, height / 2.0
         xw = -0.5 + (x / w + 1.0) * hx
         yw = -0.5 + (y / w + 1.0) * hy
         ok = (fin & (w > 0.0) & (z >= -w) & (z <= w) & (np.abs(xw) < COORD_LIMIT)
               & (np.abs(yw) < COORD_LIMIT))
-    if not np.any(ok):
-        return tris4.copy()
-    xf, yf = snap_window(np.ascontiguousarray(xw[ok]), np.ascontiguousarray(yw[ok]),
-                         bool(subpixel))
-    xs = xf / ONE
-    ys = yf / ONE
-    wk = w[ok]
-    snapped = np.stack([((xs + 0.5) / hx - 1.0) * wk, ((ys + 0.5) / hy - 1.0) * wk,
-                        z[ok], wk], axis=1) @ np.linalg.inv(mvp)
     out = v.copy()
-    out[ok, :3] = snapped[:, :3] / snapped[:, 3:4]
+    if np.any(ok):
+        xf, yf = snap_window(np.ascontiguousarray(xw[ok]), np.ascontiguousarray(yw[ok]),
+                             bool(subpixel))
+        wk = w[ok]
+        snapped = np.stack([((xf / ONE + 0.5) / hx - 1.0) * wk,
+                            ((yf / ONE + 0.5) / hy - 1.0) * wk, z[ok], wk], axis=1)
+        snapped = snapped @ np.linalg.inv(mvp)
+        out[ok, :3] = snapped[:, :3] / snapped[:, 3:4]
     return out.reshape(tris4.shape)
+
+
+def _rasterized(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
+                subpixel: bool) -> tuple[np.ndarray, Window, np.ndarray]:
+    """The triangles as the rasterizer draws them, for the eye rays.
+
+    The rasterizer's own transform, homogeneous clipper and snap
+    (:func:`vgxsim.geometry.pipeline.to_clip`, :func:`vgxsim.kernels.clip.clip_triangles`,
+    :func:`vgxsim.kernels.clip.project_snap`; guard band as the pipeline's) turn each
+    triangle into the pieces it draws, with the fixed-point window vertices it
+    rasterizes.  Sharing them is the point of this mode: it answers "what would an
+    exact stencil hold on the rasterizer's geometry"; the unsnapped cast shares
+    nothing with the renderer.  Each piece goes back to world space at its snapped
+    window position and clip z, w (vertices at infinity stay as they are, and their
+    pieces are tested in 3-D).
+
+    Returns
+    -------
+    pieces : ndarray, shape (P, 3, 4), float64
+    win : Window
+        Window-space vertices of every piece (``exact`` False for pieces with a
+        vertex at infinity).
+    source : ndarray, shape (P,), int64
+        The input triangle of each piece.
+    """
+    v = np.ascontiguousarray(tris4.reshape(-1, 4))
+    n = len(v)
+    if n == 0:
+        return tris4.copy(), no_window(), np.zeros(0, np.int64)
+    clip = np.ascontiguousarray(to_clip(v, mvp))
+    hx, hy = width / 2.0, height / 2.0
+    gx, gy = max(1.0, GUARD_PIXELS / hx), max(1.0, GUARD_PIXELS / hy)  # as the pipeline
+    out_v, _, out_tris, out_src = clip_triangles(
+        clip, np.zeros((n, 0)), np.arange(n, dtype=np.int64).reshape(-1, 3), gx, gy)
+    xf, yf, _ = project_snap(np.ascontiguousarray(out_v), 0, width - 1, 0, height - 1,
+                             -1.0, 1.0, bool(subpixel))
+    w = out_v[:, 3]
+    snapped = np.stack([((xf / ONE + 0.5) / hx - 1.0) * w, ((yf / ONE + 0.5) / hy - 1.0) * w,
+                        out_v[:, 2], w], axis=1) @ np.linalg.inv(mvp)
+    at_inf = np.zeros(len(out_v), bool)
+    at_inf[:n] = v[:, 3] == 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        world = snapped / snapped[:, 3:4]
+    original = np.zeros((len(out_v), 4))
+    original[:n] = v
+    world[at_inf] = original[at_inf]
+    ok = np.all(np.isfinite(world), axis=1)
+    pieces = world[out_tris]
+    keep = ok[out_tris].all(axis=1)
+    win = Window(int(width), np.ascontiguousarray(xf[out_tris][keep]),
+                 np.ascontiguousarray(yf[out_tris][keep]),
+                 np.ascontiguousarray(~at_inf[out_tris][keep].any(axis=1)))
+    return np.ascontiguousarray(pieces[keep]), win, out_src[keep].astype(np.int64)
 
 
 def _bands(n: int, nthreads: int) -> list[tuple[int, int]]:
@@ -361,14 +421,43 @@ def run_bands(kernel, n: int, nthreads: int, *args) -> None:
         f.result()
 
 
+def no_window() -> Window:
+    """A :data:`vgxsim.kernels.raycast.Window` that tests every triangle in 3-D."""
+    return Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
+                  np.zeros(0, np.bool_))
+
+
+def build_bvh(tris4: np.ndarray, usable: np.ndarray | None = None, *, leaf_size: int = 4,
+              sah: bool = True, max_extent: float = 0.0,
+              region: tuple[np.ndarray, np.ndarray] | None = None,
+              max_pieces: int = 64) -> BVH:
+    """A :data:`vgxsim.kernels.bvh.BVH` over the usable triangles.
+
+    ``max_extent`` > 0 cuts long triangles into pieces inside ``region`` (default:
+    everywhere), see :func:`vgxsim.kernels.bvh.split_references`; ``sah`` and
+    ``leaf_size`` as :func:`vgxsim.kernels.bvh.build_arrays`.
+    """
+    tris4 = np.ascontiguousarray(tris4, dtype=np.float64)
+    if usable is None:
+        usable = np.ones(tris4.shape[0], dtype=np.bool_)
+    if region is None:
+        region = (np.full(3, -np.inf), np.full(3, np.inf))
+    ref, lo, hi = split_references(tris4, np.ascontiguousarray(usable, dtype=np.bool_),
+                                   float(max_extent), np.asarray(region[0], np.float64),
+                                   np.asarray(region[1], np.float64), int(max_pieces))
+    return BVH(*build_arrays(tris4, ref, lo, hi, int(leaf_size), bool(sah)))
+
+
 def scene_bvh(tris4: np.ndarray, keep: np.ndarray | None = None, *, sah: bool = True,
               split_within: np.ndarray | None = None) -> BVH:
     """A BVH over the usable triangles of ``tris4`` (and ``keep``), caller-indexed.
 
     ``split_within`` (shape (2, 3): a box) cuts triangles into pieces no longer than
-    1/32 of the box's diagonal inside it (:func:`vgxsim.kernels.bvh.split_references`):
-    long shadow faces otherwise overlap every eye ray's box tests (measured on 20
-    icospheres at 320 x 256: 7.4 s uncut, see bench/raycast.py).
+    1/64 of the box's diagonal inside it, at most 256 per triangle
+    (:func:`vgxsim.kernels.bvh.split_references`): long shadow faces otherwise
+    overlap every eye ray's box tests.  Measured on 20 icospheres (8.5 k faces):
+    crossings at 320 x 256 took 7.4 s uncut and 0.72 s cut at 1/32; at 640 x 512,
+    1/16: 1.25, 1/32: 0.96, 1/64: 0.79, 1/128: 0.79 CPU seconds.
     """
     usable = usable_triangles(tris4)
     if keep is not None:
@@ -376,8 +465,8 @@ def scene_bvh(tris4: np.ndarray, keep: np.ndarray | None = None, *, sah: bool = 
     if split_within is None:
         return build_bvh(tris4, usable, sah=sah)
     lo, hi = np.asarray(split_within[0], float), np.asarray(split_within[1], float)
-    return build_bvh(tris4, usable, sah=sah, max_extent=float(np.linalg.norm(hi - lo)) / 32,
-                     region=(lo, hi))
+    return build_bvh(tris4, usable, sah=sah, max_extent=float(np.linalg.norm(hi - lo)) / 64,
+                     region=(lo, hi), max_pieces=256)
 
 
 # --------------------------------------------------------------------------------------
@@ -409,8 +498,38 @@ def nearest_hit(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray,
     idx = np.empty(len(o), np.int64)
     t = np.empty(len(o))
     n = _threads.get_threads() if threads is None else int(threads)
-    run_bands(closest_hits, len(o), n, bvh, o, d, 0.0, float(tmax), (idx, t))
+    run_bands(closest_hits, len(o), n, bvh, no_window(), o, d, 0.0, float(tmax), (idx, t))
     return idx, t
+
+
+def segment_scales(tris4: np.ndarray, eye, eps: float) -> tuple[float, float]:
+    """Offset at both ends of a shadow segment, and the length of a directional one.
+
+    With D the diagonal of the scene's bounding box and M its largest |coordinate|:
+    ``offset = eps * D + 1e-13 * M`` (the first term keeps a receiver from
+    shadowing itself at any scale, the second stays above float64 rounding of
+    coordinates near M), and ``far = 2 (D + |eye - centre|) + 1``, longer than any
+    way from the eye or a scene point to a caster.
+
+    Parameters
+    ----------
+    tris4 : ndarray, shape (T, 3, 4), float64
+        Scene triangles (finite).
+    eye : array_like, shape (3,)
+    eps : float
+
+    Returns
+    -------
+    offset, far : float
+    """
+    pts = tris4[..., :3].reshape(-1, 3)
+    if len(pts) == 0:
+        return 0.0, 1.0
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    diag = float(np.linalg.norm(hi - lo))
+    big = float(np.abs(pts).max())
+    reach = float(np.linalg.norm(np.asarray(eye, np.float64) - 0.5 * (lo + hi)))
+    return float(eps) * diag + 1e-13 * big, 2.0 * (diag + reach) + 1.0
 
 
 def _light_facing(tris4: np.ndarray, light: np.ndarray) -> np.ndarray:
@@ -450,7 +569,7 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
         ignored when ``faces`` is given.
     eps : float
         Shadow segments from the hit point P to the light count no blocker within
-        ``eps * R`` of either end (R: the scene's radius about the origin, >= 1).
+        ``offset`` of either end (:func:`segment_scales`).
     subpixel : bool, optional
         None: exact geometry.  False / True: vertices snapped as the rasterizer does
         under ``subpixel(FALSE)`` / ``subpixel(TRUE)``.
@@ -500,17 +619,24 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     face_light = np.concatenate([np.full(len(ft), li, np.int64)
                                  for li, ft in enumerate(ftris)] or [np.zeros(0, np.int64)])
     face_weight = np.concatenate(fweights or [np.zeros(0, np.int64)])
+    # eye rays see `visible` (pieces of the scene triangles `visible_src`), the shadow
+    # segments `tris4`; they differ only when snapping
+    scene_win = face_win = no_window()
+    visible, visible_src = tris4, np.arange(len(tris4), dtype=np.int64)
     if subpixel is not None:
+        visible, scene_win, visible_src = _rasterized(tris4, mvp, width, height, subpixel)
+        face4, face_win, fsrc = _rasterized(face4, mvp, width, height, subpixel)
+        face_light, face_weight = face_light[fsrc], face_weight[fsrc]
         tris4 = snap_to_window(tris4, mvp, width, height, subpixel)
-        if len(face4):
-            face4 = snap_to_window(face4, mvp, width, height, subpixel)
 
     # 1. visible surface
-    scene_tree = scene_bvh(tris4, sah=sah)
-    tri_idx = np.empty(n, np.int64)
+    scene_tree = scene_bvh(visible, sah=sah)
+    piece = np.empty(n, np.int64)
     thit = np.empty(n)
-    run_bands(closest_hits, n, nthreads, scene_tree, o, d, 0.0, 1.0, (tri_idx, thit))
-    hit = tri_idx >= 0
+    run_bands(closest_hits, n, nthreads, scene_tree, scene_win, o, d, 0.0, 1.0,
+              (piece, thit))
+    hit = piece >= 0
+    tri_idx = np.where(hit, visible_src[np.maximum(piece, 0)], -1) if len(visible_src) else piece
     point = o + np.where(hit, thit, np.nan)[:, None] * d
 
     # 2. segments to the lights
@@ -520,10 +646,7 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     layer_w = np.zeros((nl, len(tris4)), np.int64)
     for li in range(nl):
         layer_w[li] = caster & _light_facing(tris4, lights[li])
-    radius = float(np.sqrt(3.0) * max(1.0, np.abs(tris4[..., :3]).max(initial=0.0),
-                                       np.abs(np.asarray(cam.eye)).max()))
-    far = 4.0 * radius + 1.0
-    offset = float(eps) * radius
+    offset, far = segment_scales(tris4, cam.eye, eps)
     blocked = np.zeros((n, nl), bool)
     occl = np.zeros((n, nl), np.int64)
     layers = np.zeros((n, nl), np.int64)
@@ -541,12 +664,13 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     # 3. shadow-face crossings along the eye rays
     # eye rays end on the scene (or at the far plane): cut faces finely within the
     # scene's box, where the rays' intervals end
-    box = np.stack([tris4[..., :3].reshape(-1, 3).min(axis=0),
-                    tris4[..., :3].reshape(-1, 3).max(axis=0)]) if len(tris4) else None
+    fin = tris4[..., :3].reshape(-1, 3)
+    box = np.stack([fin.min(axis=0), fin.max(axis=0)]) if len(fin) else None
     face_tree = scene_bvh(face4, sah=sah, split_within=box if split_faces else None)
     cross = np.zeros((n, nl), np.int64)
     t_end = np.where(hit, thit, 1.0)
-    run_bands(count_crossings, n, nthreads, face_tree, face_light, face_weight, o, d, t_end,
+    run_bands(count_crossings, n, nthreads, face_tree, face_win, face_light, face_weight, o,
+              d, t_end,
          (cross,))
 
     obj = np.where(hit, tri_obj[np.maximum(tri_idx, 0)], -1) if len(tri_obj) else tri_idx
@@ -599,7 +723,8 @@ def shade(scene: Scene, result: RayCastResult) -> np.ndarray:
     for li, light in enumerate(scene.lights):
         lc = np.asarray(light.colour)
         col += am * np.asarray(light.ambient)
-        ldir = np.asarray(light.position) - p
+        lp = light_position(light)
+        ldir = lp[:3] - p if lp[3] else np.broadcast_to(lp[:3], p.shape).copy()
         ldir /= np.linalg.norm(ldir, axis=1, keepdims=True)
         ndl = np.maximum(np.einsum("ij,ij->i", nrm, ldir), 0.0)
         hv = ldir + view_dir

@@ -350,25 +350,17 @@ def newell_normals(vertices: np.ndarray, start: np.ndarray, verts: np.ndarray
                    ) -> np.ndarray:
     """Newell's normal of each CSR polygon (outward for CCW seen from outside), unit.
 
+    See :func:`vgxsim.kernels.adjacency.newell_normals`.
+
     Returns
     -------
     ndarray, shape (F, 3), float64
         Zero for a polygon of zero area.
     """
-    nxt = np.arange(len(verts), dtype=np.int64) + 1
-    ends = start[1:] - 1
-    owner = np.repeat(np.arange(len(start) - 1), np.diff(start))
-    nxt[ends[np.diff(start) > 0]] = start[:-1][np.diff(start) > 0]
-    p = vertices[verts]
-    q = vertices[verts[nxt]]
-    terms = np.stack([(p[:, 1] - q[:, 1]) * (p[:, 2] + q[:, 2]),
-                      (p[:, 2] - q[:, 2]) * (p[:, 0] + q[:, 0]),
-                      (p[:, 0] - q[:, 0]) * (p[:, 1] + q[:, 1])], axis=1)
-    nrm = np.zeros((len(start) - 1, 3))
-    for c in range(3):  # bincount: a sum per polygon, much faster than np.add.at
-        nrm[:, c] = np.bincount(owner, weights=terms[:, c], minlength=len(nrm))
-    length = np.linalg.norm(nrm, axis=1, keepdims=True)
-    return np.divide(nrm, length, out=np.zeros_like(nrm), where=length > 0)
+    from vgxsim.kernels.adjacency import newell_normals as kernel
+
+    return kernel(np.ascontiguousarray(vertices, np.float64), np.ascontiguousarray(start),
+                  np.ascontiguousarray(verts))
 
 
 class MeshError(ValueError):

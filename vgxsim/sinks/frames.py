@@ -33,6 +33,7 @@ from os import PathLike
 
 import numpy as np
 
+from vgxsim.sinks.atomic import TEMPORARY
 from vgxsim.sinks.images import (
     SinkError,
     check_writable_file,
@@ -254,8 +255,10 @@ class PNGSequenceSink(FrameSink):
                 raise SinkError(f"cannot delete the earlier frame {path}: {exc}") from exc
 
     def earlier_frames(self) -> list[str]:
-        """Frame files in the folder named as this sink (or a window's) names them."""
-        pattern = re.compile(rf"(win\d+_)?{re.escape(self.prefix)}\d+\.png")
+        """Frame files in the folder named as this sink (or a window's) names them,
+        and the temporary files of frames a killed run was writing."""
+        name = rf"(win\d+_)?{re.escape(self.prefix)}\d+\.png"
+        pattern = re.compile(rf"{name}|{TEMPORARY.format(name=name)}")
         with os.scandir(self.directory) as entries:
             return sorted(e.path for e in entries if pattern.fullmatch(e.name))
 

@@ -44,17 +44,18 @@ def _palette_image(rgb: np.ndarray):
     """A Pillow "P" image of ``rgb`` (H, W, 3) uint8: exact when it has <= 256 colours."""
     from PIL import Image
 
+    im = Image.fromarray(rgb, mode="RGB")
+    found = im.getcolors(256)  # None when there are more than 256 colours
+    if found is None:
+        return im.quantize(256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+    pal = np.array(sorted(c for _, c in found), np.uint32).reshape(-1, 3)
+    keys = (pal[:, 0] << 16) | (pal[:, 1] << 8) | pal[:, 2]  # sorted, as pal is
     packed = (rgb[..., 0].astype(np.uint32) << 16) | (rgb[..., 1].astype(np.uint32) << 8) \
         | rgb[..., 2]
-    colours, index = np.unique(packed.reshape(-1), return_inverse=True)
-    if colours.size <= 256:
-        im = Image.fromarray(index.astype(np.uint8).reshape(rgb.shape[:2]), mode="P")
-        pal = np.stack([(colours >> 16) & 0xFF, (colours >> 8) & 0xFF, colours & 0xFF],
-                       axis=1).astype(np.uint8)
-        im.putpalette(pal.reshape(-1).tobytes())
-        return im
-    return Image.fromarray(rgb, mode="RGB").quantize(
-        256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+    index = np.searchsorted(keys, packed).astype(np.uint8)
+    out = Image.fromarray(index, mode="P")
+    out.putpalette(pal.astype(np.uint8).reshape(-1).tobytes())
+    return out
 
 
 class GIFStream:

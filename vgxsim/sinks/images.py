@@ -20,6 +20,8 @@ from os import PathLike
 
 import numpy as np
 
+from vgxsim.sinks.atomic import atomic_path
+
 __all__ = ["IMAGE_FORMATS", "SinkError", "write_image", "image_format",
            "check_writable_file", "check_writable_folder", "atomic_write"]
 
@@ -66,18 +68,25 @@ def check_writable_folder(folder: str) -> None:
             pass
 
 
+def _holds_data(path: str) -> bool:
+    """Whether replacing ``path`` could lose anything: an empty regular file (a
+    placeholder such as ``tempfile.mkstemp`` makes) holds nothing."""
+    return not (os.path.isfile(path) and os.path.getsize(path) == 0)
+
+
 def check_writable_file(path: str, overwrite: bool) -> None:
     """Prove ``path`` can be written: its folder exists, it is not a folder, it does
-    not exist unless ``overwrite``, and a byte written to it reaches the file system
-    (``/dev/full`` fails here).  Leaves no file behind (an existing one is emptied,
-    which ``overwrite`` allows)."""
+    not exist unless ``overwrite`` (an empty file counts as absent: nothing can be
+    lost), and a byte written to it reaches the file system (``/dev/full`` fails
+    here).  Leaves no new file behind; an existing one is left empty, which
+    ``overwrite`` (or its being empty already) allows."""
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise SinkError(f"cannot write {path}: its folder {folder} does not exist")
     if os.path.isdir(path):
         raise SinkError(f"cannot write {path}: it is a folder")
     existed = os.path.lexists(path)
-    if existed and not overwrite:
+    if existed and not overwrite and _holds_data(path):
         raise SinkError(f"{path} exists; give --overwrite (overwrite=True) to replace it")
     regular = not existed or os.path.isfile(path)
     try:
@@ -89,30 +98,24 @@ def check_writable_file(path: str, overwrite: bool) -> None:
     except OSError as exc:
         raise SinkError(f"cannot write {path}: {_reason(exc)}") from exc
     finally:
-        if regular and not os.path.islink(path):
-            try:
+        try:
+            if regular and not existed:
                 os.unlink(path)
-            except OSError:
-                pass
+            elif regular:
+                os.truncate(path, 0)  # the probe byte goes; the (emptied) file stays
+        except OSError:
+            pass
 
 
 def atomic_write(path: str, write) -> None:
-    """Call ``write(fh)`` on a temporary file beside ``path``, then rename it to
-    ``path``; on any failure the temporary file is removed and ``path`` is as before."""
-    folder, name = os.path.split(os.path.abspath(path))
-    tmp = os.path.join(folder, f".{name}.{os.getpid()}.{next(_tmp_counter)}.tmp")
+    """Call ``write(fh)`` on a temporary file beside ``path`` (named by
+    :func:`vgxsim.sinks.atomic.atomic_path`), then rename it to ``path``; any failure
+    leaves ``path`` as before and raises SinkError naming it."""
     try:
-        with open(tmp, "xb") as fh:
+        with atomic_path(path) as tmp, open(tmp, "xb") as fh:
             write(fh)
-        os.replace(tmp, path)
-    except BaseException as exc:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        if isinstance(exc, Exception):
-            raise SinkError(f"cannot write {path}: {_reason(exc)}") from exc
-        raise
+    except Exception as exc:
+        raise SinkError(f"cannot write {path}: {_reason(exc)}") from exc
 
 
 def write_image(path: str | PathLike, top_down: np.ndarray, *, overwrite: bool = True
@@ -138,8 +141,9 @@ def write_image(path: str | PathLike, top_down: np.ndarray, *, overwrite: bool =
 
     path = os.fspath(path)
     ext = image_format(path)
-    if not overwrite and os.path.lexists(path):
+    if not overwrite and os.path.lexists(path) and _holds_data(path):
         raise SinkError(f"{path} exists; give --overwrite (overwrite=True) to replace it")
     if ext == ".jpg":
         top_down = np.ascontiguousarray(top_down[..., :3])
-    atomic_write(path, lambda fh: iio.imwrite(fh, top_down, extension=ext))
+    # Pillow writes all three (imageio's vendored tifffile is deprecated)
+    atomic_write(path, lambda fh: iio.imwrite(fh, top_down, extension=ext, plugin="pillow"))

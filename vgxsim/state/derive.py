@@ -2,9 +2,10 @@
 
 Computed once per distinct state (cached across flushes), in numpy: a state table
 holds a handful of distinct snapshots, so this is cheap, and keeping it out of
-Numba removes a kernel from every cold start.  The rules are those of
-:func:`vgxsim.kernels.fragment.derive_states`, the compiled reference it is tested
-against; the column layout is the kernels' (``D_*``).
+Numba removes a kernel from every cold start.  Columns (``S_*`` in, ``D_*`` out) and
+codes come from :mod:`vgxsim.state.codes`.  The kernels that read these records are
+checked pixel for pixel against the naive reference (tests/kernels), which derives
+nothing: it applies the RasterState fields directly (docs/numeric_model.md s. 6).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from vgxsim.kernels import fragment as F
+from . import codes as C
 
 _S = np.arange(256, dtype=np.int64)
 
@@ -23,81 +24,91 @@ def _cmp(func: int, lhs, rhs):
     return ((func >> code) & 1) != 0
 
 
+_CBLEND = {(C.BF_ONE, C.BF_ZERO): C.CBLEND_REPLACE, (C.BF_ONE, C.BF_ONE): C.CBLEND_ADD,
+           (C.BF_SA, C.BF_MSA): C.CBLEND_SA_MSA}  # blends with a vectorized span loop
+_ADD_OPS = (C.OP_KEEP, C.OP_INCR, C.OP_DECR)  # ops that are "add -1, 0 or +1, clamped"
+
+
 def _op(op: int, s: np.ndarray, ref: int, smax: int) -> np.ndarray:
-    if op == 1:
+    if op == C.OP_ZERO:
         return np.zeros_like(s)
-    if op == 2:
+    if op == C.OP_REPLACE:
         return np.full_like(s, ref & smax)
-    if op == 3:
+    if op == C.OP_INCR:
         return np.minimum(s + 1, smax)
-    if op == 4:
+    if op == C.OP_DECR:
         return np.maximum(s - 1, 0)
-    if op == 5:
+    if op == C.OP_INVERT:
         return (~s) & smax
     return s
 
 
 def _delta(op: int) -> int:
-    return 1 if op == 3 else (-1 if op == 4 else 0)
+    return 1 if op == C.OP_INCR else (-1 if op == C.OP_DECR else 0)
 
 
 @lru_cache(maxsize=8192)
 def _derive_one(row: tuple, planes: int, has_colour: bool, has_z: bool):
     st = row
-    d = np.zeros(F.D_SIZE, np.int64)
+    d = np.zeros(C.D_SIZE, np.int64)
     smax = (1 << planes) - 1
-    ztest = has_z and st[F.S_ZBUFFER] != 0
-    zmask = st[F.S_ZWRITEMASK] & F.Z24_MASK
+    ztest = has_z and st[C.S_ZBUFFER] != 0
+    zmask = st[C.S_ZWRITEMASK] & C.Z24_MASK
     zwrite = ztest and zmask != 0
-    sten = planes > 0 and st[F.S_STENCIL] != 0
-    colour = has_colour and (st[F.S_WMPACK] & 0xFFFFFFFF) != 0 and (
-        st[F.S_DRAW_FRONT] != 0 or st[F.S_DRAW_BACK] != 0)
-    alpha_always = st[F.S_AFUNC] == 7
-    d[F.D_COLOUR] = colour
-    d[F.D_ZTEST] = ztest
-    d[F.D_ZWRITE] = zwrite
-    d[F.D_STENCIL] = sten
-    d[F.D_BLEND] = (st[F.S_BLEND_SF] != 1 or st[F.S_BLEND_DF] != 0) or st[F.S_LOGICOP] != F.LO_SRC
-    d[F.D_ZMASK] = zmask
-    d[F.D_SWM] = st[F.S_SWRITEMASK] & smax
-    d[F.D_RGBA] = colour or not alpha_always  # the alpha test reads alpha
-    d[F.D_SMAX] = smax
-    add_ok = (sten and st[F.S_SFUNC] == 7 and (st[F.S_SWRITEMASK] & smax) == smax
-              and st[F.S_SZPASS] in (0, 3, 4) and st[F.S_SPASS] in (0, 3, 4))
+    sten = planes > 0 and st[C.S_STENCIL] != 0
+    colour = has_colour and (st[C.S_WMPACK] & 0xFFFFFFFF) != 0 and (
+        st[C.S_DRAW_FRONT] != 0 or st[C.S_DRAW_BACK] != 0)
+    alpha_always = st[C.S_AFUNC] == C.CMP_ALWAYS
+    d[C.D_COLOUR] = colour
+    d[C.D_ZTEST] = ztest
+    d[C.D_ZWRITE] = zwrite
+    d[C.D_STENCIL] = sten
+    d[C.D_BLEND] = ((st[C.S_BLEND_SF] != C.BF_ONE or st[C.S_BLEND_DF] != C.BF_ZERO)
+                  or st[C.S_LOGICOP] != C.LO_SRC)
+    d[C.D_ZMASK] = zmask
+    d[C.D_SWM] = st[C.S_SWRITEMASK] & smax
+    d[C.D_RGBA] = colour or not alpha_always  # the alpha test reads alpha
+    d[C.D_SMAX] = smax
+    d[C.D_ZFAIL_NOOP] = not sten  # refined below from the stencil table
+    add_ok = (sten and st[C.S_SFUNC] == C.CMP_ALWAYS and (st[C.S_SWRITEMASK] & smax) == smax
+              and st[C.S_SZPASS] in _ADD_OPS and st[C.S_SPASS] in _ADD_OPS)
     if (not colour) and ztest and sten and (not zwrite) and alpha_always:
-        d[F.D_MODE] = F.MODE_ZSTENCIL_ADD if add_ok else F.MODE_ZSTENCIL
-        d[F.D_DZPASS] = _delta(st[F.S_SZPASS])
-        d[F.D_DZFAIL] = _delta(st[F.S_SPASS])
-    elif (not colour) and ztest and (not sten) and zmask == F.Z24_MASK and alpha_always:
-        d[F.D_MODE] = F.MODE_ZONLY
+        d[C.D_MODE] = C.MODE_ZSTENCIL_ADD if add_ok else C.MODE_ZSTENCIL
+        d[C.D_DZPASS] = _delta(st[C.S_SZPASS])
+        d[C.D_DZFAIL] = _delta(st[C.S_SPASS])
+    elif (not colour) and ztest and (not sten) and zmask == C.Z24_MASK and alpha_always:
+        d[C.D_MODE] = C.MODE_ZONLY
     else:
-        d[F.D_MODE] = F.MODE_GENERAL
-    if (d[F.D_MODE] == F.MODE_GENERAL and colour and alpha_always
-            and st[F.S_LOGICOP] == F.LO_SRC
-            and (st[F.S_DRAW_FRONT] != 0) != (st[F.S_DRAW_BACK] != 0)
-            and ((not ztest) or (not zwrite) or zmask == F.Z24_MASK)):
-        d[F.D_MODE] = F.MODE_COLOUR
-        sf, df = st[F.S_BLEND_SF], st[F.S_BLEND_DF]
-        d[F.D_CBLEND] = 0 if (sf, df) == (1, 0) else (1 if (sf, df) == (1, 1) else 2)
+        d[C.D_MODE] = C.MODE_GENERAL
+    if (d[C.D_MODE] == C.MODE_GENERAL and colour and alpha_always
+            and st[C.S_LOGICOP] == C.LO_SRC
+            and (st[C.S_DRAW_FRONT] != 0) != (st[C.S_DRAW_BACK] != 0)
+            and ((not ztest) or (not zwrite) or zmask == C.Z24_MASK)):
+        d[C.D_MODE] = C.MODE_COLOUR
+        sf, df = st[C.S_BLEND_SF], st[C.S_BLEND_DF]
+        d[C.D_CBLEND] = _CBLEND.get((sf, df), C.CBLEND_GENERAL)
     tab = np.empty((3, 256), np.uint8)
     if not sten:
         tab[0] = _S
         tab[1] = _S
         tab[2] = 1
     else:
-        ref, mask, wm = st[F.S_SREF], st[F.S_SMASK], st[F.S_SWRITEMASK] & smax
-        passed = _cmp(st[F.S_SFUNC], ref & mask, _S & mask)
-        fail = _op(st[F.S_SFAIL], _S, ref, smax)
-        r0 = np.where(passed, _op(st[F.S_SZPASS] if ztest else st[F.S_SPASS], _S, ref, smax),
+        ref, mask, wm = st[C.S_SREF], st[C.S_SMASK], st[C.S_SWRITEMASK] & smax
+        passed = _cmp(st[C.S_SFUNC], ref & mask, _S & mask)
+        fail = _op(st[C.S_SFAIL], _S, ref, smax)
+        r0 = np.where(passed, _op(st[C.S_SZPASS] if ztest else st[C.S_SPASS], _S, ref, smax),
                       fail)
-        r1 = np.where(passed, _op(st[F.S_SPASS], _S, ref, smax), fail)
+        r1 = np.where(passed, _op(st[C.S_SPASS], _S, ref, smax), fail)
         tab[0] = (_S & ~wm) | (r0 & wm)
         tab[1] = (_S & ~wm) | (r1 & wm)
         tab[2] = passed
-        if d[F.D_MODE] == F.MODE_COLOUR and (
+        # A z-failing fragment applies tab[1] (the pass op, or fail when the stencil
+        # test fails too); when that changes no value, failing the z test is a no-op.
+        d[C.D_ZFAIL_NOOP] = bool((tab[1] == _S).all())
+        if d[C.D_MODE] == C.MODE_COLOUR and (
                 (tab[0, :smax + 1] != _S[:smax + 1]).any()
                 or (tab[1, :smax + 1] != _S[:smax + 1]).any()):
-            d[F.D_MODE] = F.MODE_GENERAL
+            d[C.D_MODE] = C.MODE_GENERAL
     d.flags.writeable = False
     tab.flags.writeable = False
     return d, tab

@@ -13,17 +13,47 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-# Comparison codes shared by SF_*, ZF_* and AF_* (gl.h): they are bit masks of
-# "less" (1), "equal" (2) and "greater" (4).
-CMP_NEVER, CMP_LESS, CMP_EQUAL, CMP_LEQUAL = 0, 1, 2, 3
-CMP_GREATER, CMP_NOTEQUAL, CMP_GEQUAL, CMP_ALWAYS = 4, 5, 6, 7
-# Stencil operations ST_* (gl.h).
-OP_KEEP, OP_ZERO, OP_REPLACE, OP_INCR, OP_DECR, OP_INVERT = 0, 1, 2, 3, 4, 5
-# Blend factors BF_* (gl.h); 2 and 3 mean DC/MDC as source, SC/MSC as destination.
-BF_ZERO, BF_ONE, BF_DC, BF_MDC, BF_SA, BF_MSA, BF_DA, BF_MDA, BF_MIN_SA_MDA = range(9)
-LO_SRC = 3
-FLAT, GOURAUD = 0, 1
-CULL_NONE, CULL_BACK, CULL_FRONT = 0, 1, 2  # bit mask: both bits cull everything
+from . import codes
+from .codes import (  # re-exported: the codes RasterState fields take
+    BF_DA,
+    BF_DC,
+    BF_MDA,
+    BF_MDC,
+    BF_MIN_SA_MDA,
+    BF_MSA,
+    BF_ONE,
+    BF_SA,
+    BF_ZERO,
+    CMP_ALWAYS,
+    CMP_EQUAL,
+    CMP_GEQUAL,
+    CMP_GREATER,
+    CMP_LEQUAL,
+    CMP_LESS,
+    CMP_NEVER,
+    CMP_NOTEQUAL,
+    CULL_BACK,
+    CULL_FRONT,
+    CULL_NONE,
+    FLAT,
+    GOURAUD,
+    LO_SRC,
+    OP_DECR,
+    OP_INCR,
+    OP_INVERT,
+    OP_KEEP,
+    OP_REPLACE,
+    OP_ZERO,
+    ROW_SIZE,
+)
+
+__all__ = [
+    "BF_DA", "BF_DC", "BF_MDA", "BF_MDC", "BF_MIN_SA_MDA", "BF_MSA", "BF_ONE", "BF_SA",
+    "BF_ZERO", "CMP_ALWAYS", "CMP_EQUAL", "CMP_GEQUAL", "CMP_GREATER", "CMP_LEQUAL",
+    "CMP_LESS", "CMP_NEVER", "CMP_NOTEQUAL", "CULL_BACK", "CULL_FRONT", "CULL_NONE", "FLAT",
+    "GOURAUD", "LO_SRC", "OP_DECR", "OP_INCR", "OP_INVERT", "OP_KEEP", "OP_REPLACE",
+    "OP_ZERO", "ROW", "ROW_SIZE", "RasterState", "needs_colour",
+]
 
 
 @dataclass(frozen=True)
@@ -78,12 +108,13 @@ class RasterState:
         return row
 
 
-# Column of each field in a state-table row (int64).  Kernels import these indices.
+# Column of each field in a state-table row: the S_* layout of vgxsim.state.codes,
+# by field name (the scissor rectangle as sx0, sx1, sy0, sy1).
 _SCALAR_FIELDS = [f.name for f in fields(RasterState) if f.name not in ("scissor", "extra")]
-ROW: dict[str, int] = {name: i for i, name in enumerate(_SCALAR_FIELDS)}
-for _i, _n in enumerate(("sx0", "sx1", "sy0", "sy1")):
-    ROW[_n] = len(_SCALAR_FIELDS) + _i
-ROW_SIZE = len(ROW)
+ROW: dict[str, int] = {name: getattr(codes, "S_" + name.upper())
+                       for name in _SCALAR_FIELDS + ["sx0", "sx1", "sy0", "sy1"]}
+if sorted(ROW.values()) != list(range(ROW_SIZE)):  # a field added without its column
+    raise ImportError("vgxsim.state.codes S_* columns do not match RasterState's fields")
 
 
 def needs_colour(rs: RasterState) -> bool:

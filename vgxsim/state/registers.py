@@ -8,8 +8,21 @@ setter call -- following Mesa's softpipe pattern of one ``update_derived``.
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import NamedTuple
 
 from .raster import CULL_BACK, CULL_FRONT, RasterState
+
+
+class StencilRegister(NamedTuple):
+    """The arguments of the last stencil(3G) call, by name."""
+
+    enable: bool = False
+    ref: int = 0
+    func: int = 7  # SF_ALWAYS
+    mask: int = 0xFF
+    fail: int = 0  # ST_KEEP
+    pass_: int = 0  # stencil passed, z failed
+    zpass: int = 0
 
 
 class RasterRegisters:
@@ -22,7 +35,7 @@ class RasterRegisters:
         self.zbuffer = False
         self.zfunc = 3  # ZF_LEQUAL, the default (zfunction(3G))
         self.zwritemask = 0xFFFFFFFF
-        self.stencil = (False, 0, 7, 0xFF, 0, 0, 0)
+        self.stencil = StencilRegister()
         self.swritemask = 0xFF
         self.blend = (1, 0)  # BF_ONE, BF_ZERO
         self.logicop = 3  # LO_SRC
@@ -41,6 +54,11 @@ class RasterRegisters:
         self.lsrepeat = 1
         self.pntsize = 1
         self._snapshot: RasterState | None = None
+        # Snapshots by register values: a program that alternates between a few
+        # states (the 1991 shadow faces: stencil INCR, DECR, INCR, ...) gets the
+        # same RasterState objects back, which the command stream compares by
+        # identity.
+        self._memo: dict[tuple, RasterState] = {}
 
     def set(self, **values) -> None:
         """Store register values and mark the snapshot dirty."""
@@ -57,9 +75,22 @@ class RasterRegisters:
         return (max(vl, sl, 0), min(vr, sr, self.width - 1),
                 max(vb, sb, 0), min(vt, st, self.height - 1))
 
+    def _key(self) -> tuple:
+        return (self.zbuffer, self.zfunc, self.zwritemask, self.stencil, self.swritemask,
+                self.blend, self.logicop, self.wmpack, self.afunction, self.shademodel,
+                self.subpixel, self.backface, self.frontface, self.frontbuffer,
+                self.backbuffer, self.viewport, self.scrmask, self.linewidth,
+                self.linestyle, self.lsrepeat, self.pntsize)
+
     def snapshot(self) -> RasterState:
-        """The current RasterState (cached until a register changes)."""
+        """The current RasterState (cached until a register changes; one object per
+        distinct set of register values)."""
         if self._snapshot is None:
+            key = self._key()
+            hit = self._memo.get(key)
+            if hit is not None:
+                self._snapshot = hit
+                return hit
             en, ref, func, mask, fail, pas, zpass = self.stencil
             cull = (CULL_BACK if self.backface else 0) | (CULL_FRONT if self.frontface else 0)
             if self.double:
@@ -77,6 +108,9 @@ class RasterRegisters:
                 linewidth=self.linewidth, linestyle=self.linestyle, lsrepeat=self.lsrepeat,
                 pntsize=self.pntsize,
             )
+            if len(self._memo) > 4096:
+                self._memo.clear()
+            self._memo[key] = self._snapshot
         return self._snapshot
 
     def clear_state(self) -> RasterState:

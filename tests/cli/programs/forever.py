@@ -1,11 +1,13 @@
 # Programs that never end on their own, for `vgxsim run --timeout/--max-frames` and
-# signals.  The first argument chooses; each frame's number is printed once it is shown.
+# signals.  The first argument chooses, the second is the window size (default 16x12);
+# each frame's number is printed once it is shown.
 import sys
 
 import gl
 
 mode = sys.argv[1] if len(sys.argv) > 1 else 'swap'
-gl.prefsize(16, 12)
+w, h = map(int, sys.argv[2].split('x')) if len(sys.argv) > 2 else (16, 12)
+gl.prefsize(w, h)
 gl.winopen('forever')
 if mode == 'swap':  # double-buffered: one frame per swapbuffers, a new colour each
     gl.RGBmode()

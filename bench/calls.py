@@ -1,0 +1,378 @@
+"""Per-call cost of the IRIS GL front end, and the Heidmann frame split in two.
+
+    python bench/calls.py [--quick] [--no-mesa] [--json FILE]
+
+Reports, medians over rounds, all measured in this one run:
+
+* ns per call of the common immediate-mode calls (v3f, n3f, c3f, cpack,
+  bgnpolygon/endpolygon, stencil, lmbind, zwritemask, wmpack,
+  pushmatrix/translate/popmatrix, callobj of a small object), and the same call mix
+  through PyOpenGL immediate mode on an OSMesa context when one can be made
+  (``--no-mesa`` or no libOSMesa: those rows are left out);
+* the Heidmann 1991 frame of vgxsim/examples/heidmann1991.py at 1280 x 1024 through
+  the API: the whole frame, the raster part (time inside ``CommandBatch.flush``:
+  binning and the band kernels) and the front end (the rest: the calls, recording,
+  transform, lighting, clipping and set-up);
+* the makeobj replay of the frame's DrawObjects (one callobj per pass);
+* the same frame drawn by a PyOpenGL immediate-mode transliteration of the example
+  (bench/heidmann_gl.py) on llvmpipe with LP_NUM_THREADS=1 and 2.
+
+Timings on a shared machine are noisy; compare ratios measured side by side.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+N_CALLS = 2000  # calls per timed loop
+
+
+def _median_ns(loop, n: int, rounds: int, before=None, after=None) -> float:
+    """Median over ``rounds`` of the time of ``loop()`` (which makes ``n`` calls), in
+    ns per call; ``before()`` and ``after()`` run untimed around each round (opening
+    the primitive the vertices go into, drawing it)."""
+    ts = []
+    for r in range(rounds + 1):
+        if before is not None:
+            before()
+        t = time.perf_counter_ns()
+        loop()
+        dt = time.perf_counter_ns() - t
+        if after is not None:
+            after()
+        if r:  # the first round warms up
+            ts.append(dt)
+    return float(np.median(ts)) / n
+
+
+def vgxsim_calls(rounds: int) -> dict[str, float]:
+    """ns per call of the common calls (each loop makes N_CALLS calls or groups)."""
+    from vgxsim import GL, gl
+    from vgxsim.gl._core import current
+
+    gl.prefsize(64, 64)
+    gid = gl.winopen("calls")
+    gl.RGBmode()
+    gl.stensize(8)
+    gl.gconfig()
+    gl.ortho2(-0.5, 63.5, -0.5, 63.5)
+    gl.lmdef(GL.DEFMATERIAL, 1, [GL.DIFFUSE, 0.8, 0.6, 0.4, GL.LMNULL])
+    gl.lmdef(GL.DEFLMODEL, 1, [GL.LMNULL])
+    gl.lmdef(GL.DEFLIGHT, 1, [GL.POSITION, 0.0, 0.0, 1.0, 0.0, GL.LMNULL])
+    ctx = current("bench")
+    n = N_CALLS
+    out: dict[str, float] = {}
+    v3f, n3f, c3f, cpack = gl.v3f, gl.n3f, gl.c3f, gl.cpack
+    bgn, end = gl.bgnpolygon, gl.endpolygon
+    p = (1.0, 2.0, 0.0)
+
+    def close():
+        end()
+        ctx.flush()
+
+    def loop_v3f():
+        for _ in range(n):
+            v3f(1.0, 2.0, 0.0)
+
+    def loop_v3f_seq():
+        for _ in range(n):
+            v3f(p)
+
+    def loop_n3f():
+        for _ in range(n):
+            n3f(0.0, 0.0, 1.0)
+
+    def loop_c3f():
+        for _ in range(n):
+            c3f(0.5, 0.25, 1.0)
+
+    def loop_cpack():
+        for _ in range(n):
+            cpack(0xFF00FF00)
+
+    out["v3f(x, y, z)"] = _median_ns(loop_v3f, n, rounds, bgn, close)
+    out["v3f((x, y, z))"] = _median_ns(loop_v3f_seq, n, rounds, bgn, close)
+    out["n3f"] = _median_ns(loop_n3f, n, rounds)
+    out["c3f"] = _median_ns(loop_c3f, n, rounds)
+    out["cpack"] = _median_ns(loop_cpack, n, rounds)
+
+    def loop_bgnend():
+        for _ in range(n):
+            bgn()
+            end()
+
+    out["bgnpolygon+endpolygon (empty)"] = _median_ns(loop_bgnend, n, rounds,
+                                                      after=ctx.flush) / 2
+
+    def loop_stencil():
+        for i in range(n):
+            gl.stencil(1, 0, GL.SF_ALWAYS, 0xFF, GL.ST_KEEP, GL.ST_KEEP,
+                       GL.ST_INCR if i & 1 else GL.ST_DECR)
+
+    out["stencil"] = _median_ns(loop_stencil, n, rounds)
+
+    def loop_lmbind():
+        for i in range(n):
+            gl.lmbind(GL.MATERIAL, i & 1)
+
+    out["lmbind(MATERIAL)"] = _median_ns(loop_lmbind, n, rounds)
+
+    def loop_zwritemask():
+        for i in range(n):
+            gl.zwritemask(0xFFFFFFFF if i & 1 else 0)
+
+    out["zwritemask"] = _median_ns(loop_zwritemask, n, rounds)
+
+    def loop_wmpack():
+        for i in range(n):
+            gl.wmpack(0xFFFFFFFF if i & 1 else 0)
+
+    out["wmpack"] = _median_ns(loop_wmpack, n, rounds)
+
+    def loop_matrix():
+        for _ in range(n):
+            gl.pushmatrix()
+            gl.translate(1.0, 2.0, 3.0)
+            gl.popmatrix()
+
+    out["pushmatrix+translate+popmatrix (per call)"] = _median_ns(loop_matrix, n, rounds) / 3
+
+    # A shadow face group as the 1991 code sends it.
+    quad = ((1.0, 1.0, 0.0), (30.0, 1.0, 0.0), (30.0, 30.0, 0.0), (1.0, 30.0, 0.0))
+
+    def loop_face():
+        for i in range(n):
+            gl.stencil(1, 0, GL.SF_ALWAYS, 0xFF, GL.ST_KEEP, GL.ST_KEEP,
+                       GL.ST_INCR if i & 1 else GL.ST_DECR)
+            bgn()
+            v3f(quad[0])
+            v3f(quad[1])
+            v3f(quad[2])
+            v3f(quad[3])
+            end()
+
+    gl.zwritemask(0)
+    gl.wmpack(0)
+    out["stencil+bgnpolygon+4 v3f+endpolygon (per call)"] = _median_ns(
+        loop_face, n, rounds, after=ctx.flush) / 7
+    gl.zwritemask(0xFFFFFFFF)
+    gl.wmpack(0xFFFFFFFF)
+    gl.stencil(0, 0, GL.SF_ALWAYS, 0xFF, GL.ST_KEEP, GL.ST_KEEP, GL.ST_KEEP)
+
+    gl.makeobj(1)
+    gl.cpack(0xFF0000FF)
+    gl.bgnpolygon()
+    for q in quad:
+        gl.v3f(q)
+    gl.endpolygon()
+    gl.closeobj()
+
+    def loop_callobj():
+        for _ in range(n // 4):
+            gl.callobj(1)
+
+    out["callobj (1 quad)"] = _median_ns(loop_callobj, n // 4, rounds, after=ctx.flush)
+    gl.winclose(gid)
+    return out
+
+
+def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
+                   clock=time.perf_counter) -> dict[str, float]:
+    """The Heidmann frame through the API: total, raster (inside flush), front end,
+    in ms; and the same frame with DrawObjects replayed from display objects.
+
+    ``clock``: ``time.perf_counter`` (wall) or ``time.process_time`` (CPU time of
+    this process, all its threads: steadier on a machine shared with other work).
+    """
+    from vgxsim import batch as batch_mod
+    from vgxsim import gl
+    from vgxsim.examples.heidmann1991 import Shadows
+
+    spent = [0.0]
+    real_flush = batch_mod.CommandBatch.flush
+
+    def timed_flush(self, *a, **k):
+        t = clock()
+        try:
+            return real_flush(self, *a, **k)
+        finally:
+            spent[0] += clock() - t
+
+    prog = Shadows()
+    gl.prefsize(width, height)
+    gid = gl.winopen("shadows")
+    prog.setup()
+    batch_mod.CommandBatch.flush = timed_flush
+    try:
+        def frame():
+            prog.DrawFrame()
+            gl.swapbuffers()
+
+        def measure(run):
+            run()
+            tot, ras = [], []
+            for _ in range(rounds):
+                spent[0] = 0.0
+                t = clock()
+                run()
+                tot.append(clock() - t)
+                ras.append(spent[0])
+            tot_a, ras_a = np.array(tot), np.array(ras)
+            return (float(np.median(tot_a)) * 1e3, float(np.median(ras_a)) * 1e3,
+                    float(np.median(tot_a - ras_a)) * 1e3)
+
+        out = {}
+        out["frame_ms"], out["raster_ms"], out["front_end_ms"] = measure(frame)
+        # DrawObjects compiled into display objects, one per material part.
+        draw_objects = prog.DrawObjects
+        for part in range(3):
+            gl.makeobj(100 + part)
+            draw_objects(part)
+            gl.closeobj()
+        prog.DrawObjects = lambda matl: gl.callobj(100 + matl)
+        try:
+            (out["objects_frame_ms"], out["objects_raster_ms"],
+             out["objects_front_end_ms"]) = measure(frame)
+        finally:
+            prog.DrawObjects = draw_objects
+        out["polygons_per_frame"] = _count_polygons(prog)
+    finally:
+        batch_mod.CommandBatch.flush = real_flush
+        gl.winclose(gid)
+    return out
+
+
+def _count_polygons(prog) -> int:
+    from vgxsim import gl
+
+    count = [0]
+    real = gl.bgnpolygon
+    import vgxsim.examples.heidmann1991 as ex
+
+    def counting():
+        count[0] += 1
+        real()
+
+    ex.bgnpolygon = counting
+    try:
+        prog.DrawFrame()
+        gl.swapbuffers()
+    finally:
+        ex.bgnpolygon = real
+    return count[0]
+
+
+def mesa_calls(rounds: int) -> dict[str, float] | None:
+    """The same call mix through PyOpenGL immediate mode on an OSMesa context, or
+    None when OSMesa cannot be made."""
+    try:
+        os.environ.setdefault("PYOPENGL_PLATFORM", "osmesa")
+        from vgxsim.reference import mesa
+        peer = mesa.MesaPeer(64, 64)
+    except Exception:  # noqa: BLE001 - no OSMesa: the rows are left out
+        return None
+    from OpenGL import GL as G
+
+    peer._make_current()
+    n = N_CALLS
+    out: dict[str, float] = {}
+    v = (1.0, 2.0, 0.0)
+
+    def loop_vertex():
+        G.glBegin(G.GL_POLYGON)
+        for _ in range(n):
+            G.glVertex3fv(v)
+        G.glEnd()
+
+    def loop_normal():
+        for _ in range(n):
+            G.glNormal3fv(v)
+
+    def loop_colour():
+        for _ in range(n):
+            G.glColor3f(0.5, 0.25, 1.0)
+
+    def loop_bgnend():
+        for _ in range(n):
+            G.glBegin(G.GL_POLYGON)
+            G.glEnd()
+
+    def loop_stencil():
+        for i in range(n):
+            G.glStencilOp(G.GL_KEEP, G.GL_KEEP, G.GL_INCR if i & 1 else G.GL_DECR)
+
+    def loop_matrix():
+        for _ in range(n):
+            G.glPushMatrix()
+            G.glTranslatef(1.0, 2.0, 3.0)
+            G.glPopMatrix()
+
+    out["v3f(x, y, z)"] = _median_ns(loop_vertex, n, rounds)
+    out["n3f"] = _median_ns(loop_normal, n, rounds)
+    out["c3f"] = _median_ns(loop_colour, n, rounds)
+    out["bgnpolygon+endpolygon (empty)"] = _median_ns(loop_bgnend, n, rounds) / 2
+    out["stencil"] = _median_ns(loop_stencil, n, rounds)
+    out["pushmatrix+translate+popmatrix (per call)"] = _median_ns(loop_matrix, n, rounds) / 3
+    G.glFinish()
+    return out
+
+
+def llvmpipe_frames() -> dict[str, float]:
+    """The PyOpenGL immediate-mode transliteration of the frame (bench/heidmann_gl.py)
+    on llvmpipe with 1 and 2 threads, each in its own process; ms."""
+    import subprocess
+
+    out = {}
+    for threads in (1, 2):
+        env = dict(os.environ, LP_NUM_THREADS=str(threads))
+        try:
+            res = subprocess.run([sys.executable, os.path.join(HERE, "heidmann_gl.py"),
+                                  str(threads)], env=env, capture_output=True, text=True,
+                                 timeout=600)
+            data = json.loads(res.stdout.strip().splitlines()[-1])
+        except (subprocess.SubprocessError, ValueError, IndexError):
+            continue
+        if "frame_s" in data:
+            out[f"llvmpipe_{threads}_thread_frame_ms"] = data["frame_s"] * 1e3
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--no-mesa", action="store_true")
+    ap.add_argument("--cpu", action="store_true",
+                    help="time the frame in process CPU time (a busy shared machine)")
+    ap.add_argument("--json")
+    args = ap.parse_args(argv)
+    rounds = 5 if args.quick else 15
+    calls = vgxsim_calls(rounds)
+    mesa = None if args.no_mesa else mesa_calls(rounds)
+    print(f"{'call':50s} {'vgxsim ns':>10s} {'PyOpenGL ns':>12s}")
+    for name, ns in calls.items():
+        m = "" if mesa is None or name not in mesa else f"{mesa[name]:12.0f}"
+        print(f"{name:50s} {ns:10.0f} {m}")
+    frame = heidmann_frame(3 if args.quick else 7,
+                           clock=time.process_time if args.cpu else time.perf_counter)
+    if not args.no_mesa:
+        frame.update(llvmpipe_frames())
+    print()
+    for k, v in frame.items():
+        print(f"heidmann 1280x1024 {k:30s} {v:10.2f}")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"calls": calls, "mesa": mesa, "frame": frame}, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

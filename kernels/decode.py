@@ -1,0 +1,168 @@
+"""Decode the command stream into vertex and primitive arrays (one pass).
+
+The stream (vgxsim/stream/opcodes.py) carries vertices and attribute changes the way
+the VGX command FIFO did: a colour or normal call changes the current attribute and
+every vertex after it takes that attribute.  This pass resolves the attributes of
+every vertex and cuts the primitives, so that what follows (transform, lighting,
+clipping, set-up) works on whole arrays.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vgxsim.kernels.options import jit
+from vgxsim.stream.opcodes import (
+    BGN,
+    CM,
+    CRAW,
+    CSKIP,
+    END,
+    P_KIND,
+    P_LMCOLOR_SET,
+    P_STATE,
+    P_SWAP0,
+    P_SWAP1,
+    P_V0,
+    P_V1,
+    PRIM_COLUMNS,
+    STATE,
+    SWAP,
+    SYNC,
+    C,
+    N,
+    V,
+)
+
+
+@jit
+def decode_stream(ops, nops, fl, attrs):
+    """Resolve per-vertex attributes and cut primitives.
+
+    Parameters
+    ----------
+    ops : ndarray, shape (>= nops,), int64
+        Opcodes and their integer payloads.
+    nops : int
+        How many entries of ``ops`` are used.
+    fl : ndarray, float64
+        Float payloads, in stream order.
+    attrs : ndarray, shape (11,), float64
+        In: the attributes current at the start of the stream (r, g, b, a, nx, ny,
+        nz, sent_normal, lmcolor_set, state, open kind or -1); out: at its end.
+
+    Returns
+    -------
+    pos : ndarray, shape (V, 4), float64
+    col : ndarray, shape (V, 4), float64
+    nrm : ndarray, shape (V, 3), float64
+    sent : ndarray, shape (V,), bool
+        Whether the normal was sent after the last colour (lmcolor(3G)).
+    prims : ndarray, shape (P, 7), int64
+        Kind, first vertex, end vertex, state record, lmcolor_set, swap range.
+    swaps : ndarray, shape (S,), int64
+        swaptmesh positions (vertex counts from the primitive's first vertex).
+    """
+    nv = 0
+    npr = 0
+    nsw = 0
+    i = 0
+    while i < nops:  # first pass: sizes
+        op = ops[i]
+        if op == V:
+            nv += 1
+        elif op == END:
+            npr += 1
+        elif op == SWAP:
+            nsw += 1
+        i += 1 + _int_payload(op)
+    pos = np.empty((nv, 4))
+    col = np.empty((nv, 4))
+    nrm = np.empty((nv, 3))
+    sent = np.empty(nv, np.bool_)
+    prims = np.empty((npr, PRIM_COLUMNS), np.int64)
+    swaps = np.empty(nsw, np.int64)
+    r, g, b, a = attrs[0], attrs[1], attrs[2], attrs[3]
+    nx, ny, nz = attrs[4], attrs[5], attrs[6]
+    sn = attrs[7] != 0.0
+    lms = attrs[8] != 0.0
+    state = int(attrs[9])
+    kind = int(attrs[10])
+    v0 = 0
+    sw0 = 0
+    iv = 0
+    ip = 0
+    isw = 0
+    f = 0
+    i = 0
+    while i < nops:
+        op = ops[i]
+        if op == V:
+            pos[iv, 0] = fl[f]
+            pos[iv, 1] = fl[f + 1]
+            pos[iv, 2] = fl[f + 2]
+            pos[iv, 3] = fl[f + 3]
+            col[iv, 0] = r
+            col[iv, 1] = g
+            col[iv, 2] = b
+            col[iv, 3] = a
+            nrm[iv, 0] = nx
+            nrm[iv, 1] = ny
+            nrm[iv, 2] = nz
+            sent[iv] = sn
+            iv += 1
+            f += 4
+        elif op == SYNC:
+            r, g, b, a = fl[f], fl[f + 1], fl[f + 2], fl[f + 3]
+            nx, ny, nz = fl[f + 4], fl[f + 5], fl[f + 6]
+            sn = ops[i + 1] != 0
+            lms = ops[i + 2] != 0
+            f += 7
+        elif op == C or op == CM or op == CSKIP or op == CRAW:
+            if op == C:
+                r, g, b, a = fl[f], fl[f + 1], fl[f + 2], fl[f + 3]
+                sn = False
+            elif op == CM:
+                r, g, b, a = fl[f], fl[f + 1], fl[f + 2], fl[f + 3]
+                lms = True
+            f += 4
+        elif op == N:
+            nx, ny, nz = fl[f], fl[f + 1], fl[f + 2]
+            sn = True
+            f += 3
+        elif op == BGN:
+            kind = ops[i + 1]
+            v0 = iv
+            sw0 = isw
+        elif op == END:
+            prims[ip, P_KIND] = kind
+            prims[ip, P_V0] = v0
+            prims[ip, P_V1] = iv
+            prims[ip, P_STATE] = state
+            prims[ip, P_LMCOLOR_SET] = 1 if lms else 0
+            prims[ip, P_SWAP0] = sw0
+            prims[ip, P_SWAP1] = isw
+            ip += 1
+            kind = -1
+        elif op == SWAP:
+            swaps[isw] = iv - v0
+            isw += 1
+        elif op == STATE:
+            state = ops[i + 1]
+        i += 1 + _int_payload(op)
+    attrs[0], attrs[1], attrs[2], attrs[3] = r, g, b, a
+    attrs[4], attrs[5], attrs[6] = nx, ny, nz
+    attrs[7] = 1.0 if sn else 0.0
+    attrs[8] = 1.0 if lms else 0.0
+    attrs[9] = state
+    attrs[10] = kind
+    return pos, col, nrm, sent, prims, swaps
+
+
+@jit
+def _int_payload(op):
+    if op == SYNC:
+        return 2
+    if op == BGN or op == STATE:
+        return 1
+    return 0

@@ -1,0 +1,212 @@
+"""Exact work skipping per tile: depth bounds and fully covered blocks.
+
+A band of rows (:mod:`.render`) is cut into tiles of ``TILE_W`` columns.  For each
+tile the band keeps bounds ``[lo, hi]`` of the z values stored in it, found by one
+scan when first asked for and then kept up to date by the primitives that write z
+(a triangle's written depths lie inside its vertex depth range ``t_zlim``, a clear
+writes one value).  Before a large triangle is rasterized, every tile it touches
+gets a class:
+
+* ``TILE_SKIP``: the triangle's depths over the tile, ``[zlo, zhi]``, cannot pass the
+  z test against any depth in ``[lo, hi]``, and a fragment failing the z test changes
+  nothing (``D_ZFAIL_NOOP``: no stencil op on z fail).  The tile is not visited:
+  Heidmann's shadow-volume faces behind the scene (z-pass, ST_KEEP on z fail) and
+  the lit pass's hidden faces (zfunction(ZF_EQUAL)) cost nothing there.
+* ``TILE_FULL``: the four corners of the tile's rectangle are inside all three edges,
+  so (the triangle being convex) every pixel is: rows need no span solve and the
+  edge-function rasterizer no per-pixel tests.
+* ``TILE_PARTIAL``: everything else, rasterized as before.
+
+Exactness (docs/numeric_model.md, "Work skipping"): a fragment's depth is
+``round_z((z0 + dzdy*(y - y0)) + dzdx*(x - x0))``; IEEE addition and multiplication
+round monotonically, ``x - x0`` and ``y - y0`` are exact, so over a rectangle that
+expression is monotone in x and in y and takes its extremes at the corners, which
+are evaluated with the same expression.  Corners beyond +-4e18 (where the float to
+int64 conversion stops being monotone) and non-finite planes never skip.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vgxsim.state.codes import (
+    S_ZFUNC,
+    WORK_BLOCKS_COVERED,
+    WORK_TILES_SKIPPED,
+    Z24_MASK,
+)
+
+from .fragment import cmp_bits, round_z, write_z
+from .options import inline, jit
+from .raster import covers
+
+TILE_SHIFT = 6
+TILE_W = 1 << TILE_SHIFT  # columns per tile; a tile is TILE_W x the band's rows
+TILE_SKIP, TILE_PARTIAL, TILE_FULL = 0, 1, 2
+# Triangles with fewer pixels than this in a band are not classified tile by tile:
+# the corner tests would cost more than they save (the result is the same).
+TILE_MIN_PIXELS = 512
+ZMIN24, ZMAX24 = -0x800000, 0x7FFFFF
+_PLANE_LIMIT = 1e30  # |z0|, |gradients| below this: corner sums cannot overflow
+_CORNER_LIMIT = 4e18  # float depths below this convert to int64 monotonically
+# Columns of a band's tile-bounds array (ntiles, 3) int64.
+TB_VALID, TB_LO, TB_HI = 0, 1, 2
+
+
+@inline
+def _plane_at(z0, dzdx, dzdy, x0, y0, x, y):
+    """Unrounded depth at pixel (x, y), the span loops' expression and order."""
+    za = z0 + dzdy * (y - y0)
+    return za + dzdx * (x - x0)
+
+
+@jit
+def scan_tile(zbuf, tx, y_lo, y_hi, tb):
+    """Exact depth bounds of tile ``tx`` over rows ``[y_lo, y_hi]`` into ``tb[tx]``."""
+    x0 = tx << TILE_SHIFT
+    x1 = min(x0 + TILE_W, zbuf.shape[1]) - 1
+    lo = np.int64(zbuf[y_lo, x0])
+    hi = lo
+    for y in range(y_lo, y_hi + 1):
+        row = zbuf[y]
+        for x in range(x0, x1 + 1):
+            v = np.int64(row[np.uintp(x)])
+            lo = min(lo, v)
+            hi = max(hi, v)
+    tb[tx, TB_VALID] = 1
+    tb[tx, TB_LO] = lo
+    tb[tx, TB_HI] = hi
+
+
+@inline
+def z_fails_everywhere(zfunc, zlo, zhi, blo, bhi):
+    """No fragment depth in ``[zlo, zhi]`` passes ``zfunc`` against any stored depth
+    in ``[blo, bhi]`` (the outcome bits of the ZF_* code none of which can occur)."""
+    lt, eq, gt = cmp_bits(zfunc)
+    can_lt = zlo < bhi
+    can_eq = zlo <= bhi and zhi >= blo
+    can_gt = zhi > blo
+    return not ((lt and can_lt) or (eq and can_eq) or (gt and can_gt))
+
+
+@jit
+def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, zbuf, tb,
+                   runs, skip, cover, merge, work):
+    """Classify the tiles of triangle ``t``'s rectangle in one band; write the runs
+    of adjacent non-skipped tiles of one class into ``runs``.
+
+    Parameters
+    ----------
+    t : int
+        Triangle record.
+    xlo, xhi, ylo, yhi : int
+        The triangle's pixel rectangle in this band (bounding box, scissor, band).
+    y_lo, y_hi : int
+        The band's rows (the tiles' extent in y).
+    t_edge, t_z, t_zlim : ndarray
+        Set-up records (see :func:`vgxsim.kernels.setup.setup_triangles`).
+    st : ndarray, shape (ROW_SIZE,), int64
+        State row.
+    zbuf : ndarray, shape (H, W), int32
+    tb : ndarray, shape (ntiles, 3), int64
+        The band's tile bounds (TB_*), filled in on first use.
+    runs : ndarray, shape (ntiles, 3), int64
+        Output: ``(x first, x last, TILE_FULL or TILE_PARTIAL)`` per run.
+    skip, cover : bool
+        Whether to test depth bounds (the caller has checked that the z test is on
+        and z failure is a no-op) and whether to test full coverage.
+    merge : bool
+        Merge adjacent full and partial tiles into one (partial) run: for the span
+        rasterizer, which solves each row once; the edge-function rasterizer keeps
+        full runs apart to leave out their per-pixel tests.
+    work : ndarray, shape (WORK_SIZE,), int64
+        Work counters of this band.
+
+    Returns
+    -------
+    int
+        Number of runs (0: the triangle touches nothing in this band).
+    """
+    edge = t_edge[t]
+    z0, x0, y0, dzdx, dzdy = t_z[t, 0], t_z[t, 1], t_z[t, 2], t_z[t, 3], t_z[t, 4]
+    zmin = t_zlim[t, 0]
+    zmax = t_zlim[t, 1]
+    skip = skip and (abs(z0) < _PLANE_LIMIT and abs(dzdx) < _PLANE_LIMIT
+                     and abs(dzdy) < _PLANE_LIMIT)
+    zfunc = st[S_ZFUNC]
+    nruns = 0
+    for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
+        cx0 = max(xlo, tx << TILE_SHIFT)
+        cx1 = min(xhi, (tx << TILE_SHIFT) + TILE_W - 1)
+        cls = TILE_PARTIAL
+        if skip:
+            a = _plane_at(z0, dzdx, dzdy, x0, y0, cx0, ylo)
+            b = _plane_at(z0, dzdx, dzdy, x0, y0, cx1, ylo)
+            c = _plane_at(z0, dzdx, dzdy, x0, y0, cx0, yhi)
+            d = _plane_at(z0, dzdx, dzdy, x0, y0, cx1, yhi)
+            flo = min(min(a, b), min(c, d))
+            fhi = max(max(a, b), max(c, d))
+            if flo > -_CORNER_LIMIT and fhi < _CORNER_LIMIT:
+                if tb[tx, TB_VALID] == 0:
+                    scan_tile(zbuf, tx, y_lo, y_hi, tb)
+                # round_z is monotone: rounding the extremes gives the extremes.
+                if z_fails_everywhere(zfunc, round_z(flo, zmin, zmax),
+                                      round_z(fhi, zmin, zmax), tb[tx, TB_LO], tb[tx, TB_HI]):
+                    cls = TILE_SKIP
+                    work[WORK_TILES_SKIPPED] += 1
+        if cls == TILE_PARTIAL and cover and covers(edge, cx0, ylo) and covers(
+                edge, cx1, ylo) and covers(edge, cx0, yhi) and covers(edge, cx1, yhi):
+            cls = TILE_FULL
+            work[WORK_BLOCKS_COVERED] += 1
+        if cls == TILE_SKIP:
+            continue
+        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and (
+                merge or runs[nruns - 1, 2] == cls):
+            # Span rows solve their edges once per row anyway: one long run (a long
+            # vectorized loop) beats a run per class; it is full only if all tiles are.
+            runs[nruns - 1, 1] = cx1
+            if cls != runs[nruns - 1, 2]:
+                runs[nruns - 1, 2] = TILE_PARTIAL
+        else:
+            runs[nruns, 0] = cx0
+            runs[nruns, 1] = cx1
+            runs[nruns, 2] = cls
+            nruns += 1
+    return nruns
+
+
+@inline
+def note_z_written(tb, xlo, xhi, zlo, zhi, zmask):
+    """After a primitive wrote depths in ``[zlo, zhi]`` (unwrapped) through
+    ``zmask`` somewhere in columns ``[xlo, xhi]`` of the band: widen the valid
+    bounds of those tiles, or forget them when the stored value is not simply the
+    written one (a partial mask, or a depth that wraps to 24 bits)."""
+    exact = zmask == Z24_MASK and zlo >= ZMIN24 and zhi <= ZMAX24
+    for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
+        if tb[tx, TB_VALID] == 0:
+            continue
+        if exact:
+            tb[tx, TB_LO] = min(tb[tx, TB_LO], zlo)
+            tb[tx, TB_HI] = max(tb[tx, TB_HI], zhi)
+        else:
+            tb[tx, TB_VALID] = 0
+
+
+@inline
+def note_z_cleared(tb, xlo, xhi, whole_rows, width, zval, zmask):
+    """After a z clear of columns ``[xlo, xhi]`` (over all the band's rows when
+    ``whole_rows``): tiles cleared whole with the full mask hold exactly one value."""
+    v = write_z(0, zval, Z24_MASK)
+    full = zmask == Z24_MASK
+    for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
+        tx0 = tx << TILE_SHIFT
+        tx1 = min(tx0 + TILE_W, width) - 1
+        if full and whole_rows and xlo <= tx0 and xhi >= tx1:
+            tb[tx, TB_VALID] = 1
+            tb[tx, TB_LO] = v
+            tb[tx, TB_HI] = v
+        elif full and tb[tx, TB_VALID] != 0:
+            tb[tx, TB_LO] = min(tb[tx, TB_LO], v)
+            tb[tx, TB_HI] = max(tb[tx, TB_HI], v)
+        else:
+            tb[tx, TB_VALID] = 0

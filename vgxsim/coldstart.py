@@ -1,0 +1,87 @@
+"""Cold start: compile the raster and geometry kernels in two processes at once.
+
+With an empty Numba cache the first image waits for every kernel it needs to
+compile, one after another (Numba compiles under one global lock, so threads do
+not help).  The kernels fall into two trees that share nothing: the band kernel
+(``render_bands`` and everything it calls) and the geometry kernels (transform,
+clip, project, set-up).  When the band kernel's cache entry is missing, the first
+:class:`~vgxsim.batch.CommandBatch` of a process starts one helper process that
+draws a tiny image with flushing switched off (so it compiles, and caches, only the
+geometry kernels), compiles the band kernel itself by flushing a one-clear batch,
+then waits for the helper; the geometry kernels then load from the cache.
+
+Set ``VGXSIM_PARALLEL_COMPILE=0`` to compile in-process only (also the default on a
+single CPU, and whenever the cache cannot be inspected).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+_ENV = "VGXSIM_PARALLEL_COMPILE"
+_started = False
+
+_GEOMETRY = r"""
+import vgxsim.batch as B
+B.CommandBatch.flush = lambda self: B.CommandBatch._reset(self)  # geometry only
+from vgxsim.geometry.transform import orthographic
+from vgxsim.pipeline.context import Context
+ctx = Context(32, 32, stencil=8)
+ctx.matrices.load_projection(orthographic(-0.5, 31.5, -0.5, 31.5, -1, 1))
+ctx.raster.set(zbuffer=True)
+ctx.draw_arrays("polygon", [[1, 1, 0], [30, 2, 0], [16, 30, 0]],
+                [[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1]])
+ctx.flush()
+"""
+
+
+def _band_kernel_cached() -> bool | None:
+    """Whether the band kernel has a cache index on disk (None: cannot tell)."""
+    try:
+        from vgxsim.kernels.render import render_bands
+
+        if render_bands.signatures:
+            return True
+        return os.path.exists(render_bands._cache._cache_file._index_path)
+    except (AttributeError, OSError):
+        return None
+
+
+def prepare(batch_type) -> None:
+    """Compile the kernels of a first image in parallel if the cache is cold.
+
+    Called by the first ``CommandBatch``; later calls return at once.
+
+    Parameters
+    ----------
+    batch_type : type
+        :class:`vgxsim.batch.CommandBatch` (passed in to keep the import one-way).
+    """
+    global _started
+    if _started:
+        return
+    _started = True
+    if os.environ.get(_ENV, "1") == "0" or (os.cpu_count() or 1) < 2:
+        return
+    if _band_kernel_cached() is not False:
+        return
+    env = dict(os.environ, **{_ENV: "0"})
+    try:
+        helper = subprocess.Popen([sys.executable, "-c", _GEOMETRY], env=env,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    except OSError:
+        return
+    try:
+        from vgxsim.state.planes import Framebuffer, PlaneConfig
+        from vgxsim.state.raster import RasterState
+
+        batch = batch_type(Framebuffer(PlaneConfig(8, 8, stencil=8)))
+        batch.add_clear(7, 0, 0, 0, RasterState(scissor=(0, 7, 0, 7)))
+        batch.flush()  # compiles render_bands and the raster kernels it calls
+    finally:
+        try:
+            helper.wait(timeout=600)
+        except subprocess.TimeoutExpired:  # never block drawing on the helper
+            helper.kill()

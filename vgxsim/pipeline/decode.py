@@ -1,0 +1,195 @@
+"""At a flush: decode a window's command stream and draw what it holds.
+
+The decode kernel (:func:`vgxsim.kernels.decode.decode_stream`) resolves every
+vertex's colour, normal and lit flag in one pass and cuts the primitives; here the
+primitives are grouped -- consecutive triangle primitives of one draw state become
+one triangle list, fanned at once -- and handed to the geometry passes
+(:mod:`.draw`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vgxsim.geometry import assembly
+from vgxsim.geometry.transform import apply
+from vgxsim.kernels.decode import decode_stream
+from vgxsim.stream.opcodes import (
+    CLOSEDLINE,
+    LINE,
+    NAME_OF,
+    P_KIND,
+    P_LMCOLOR_SET,
+    P_STATE,
+    PMV,
+    POINT,
+    POLYGON,
+    QSTRIP,
+    TMESH,
+)
+
+from . import draw
+from .draw import defer_triangles, draw_arrays
+
+_TRIANGLES = np.zeros(16, bool)
+_TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
+
+
+def drain(ctx) -> None:
+    """Decode and draw the window's stream up to its open primitive, if any."""
+    s = ctx.stream
+    nops = len(s.ops)
+    if nops == 0:
+        return
+    cut_ops, cut_fl = (s.open_ops, s.open_fl) if ctx.prim is not None else (nops, len(s.fl))
+    if cut_ops <= 0:
+        return
+    ops = np.array(s.ops, dtype=np.int64)
+    fl = np.array(s.fl, dtype=np.float64) if s.fl else np.zeros(0)
+    pos, col, nrm, sent, prims, swaps = decode_stream(ops, cut_ops, fl, s.attrs)
+    if cut_ops == nops:
+        s.ops = []
+        s.fl = []
+    else:
+        s.ops = s.ops[cut_ops:]
+        s.fl = s.fl[cut_fl:]
+        s.open_ops, s.open_fl = 0, 0
+    records = ctx.states.records
+    _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps)
+    if ctx.prim is None:
+        ctx.states.clear()
+        s.attrs[9] = -1.0
+        s.raster = None  # the next bgn* records its state again
+
+
+def _lit(state, sent: np.ndarray) -> np.ndarray:
+    """Which vertices are lit: with LMC_COLOR those whose normal was sent after the
+    last colour; in every other lmcolor mode colour calls change the material (or are
+    ignored, LMC_NULL), so every vertex is lit (lmcolor(3G))."""
+    if state.lmcolor_mode != 0:
+        return np.ones(sent.shape[0], dtype=bool)
+    return sent
+
+
+def _select_prims(ctx, records, pos, prims, swaps) -> None:
+    """Pick/select mode: hand each primitive to the hit test in clip space (its own
+    state's transform, which holds the pick matrix), drawing nothing (pick(3G))."""
+    for kind, v0, v1, si, _lms, s0, s1 in prims[:, :7].tolist():
+        if v1 == v0:
+            continue
+        name = "polygon" if kind in (POLYGON, PMV) else NAME_OF[kind]
+        ctx.select_hook(name, apply(pos[v0:v1], records[si].mvp), swaps[s0:s1].tolist(),
+                        None)
+
+
+def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
+    npr = prims.shape[0]
+    if npr == 0:
+        return
+    if ctx.select_hook is not None:
+        _select_prims(ctx, records, pos, prims, swaps)
+        return
+    kinds = prims[:, P_KIND]
+    tri = _TRIANGLES[kinds]
+    if draw.MERGE_FRAGMENT_STATES:
+        geometry = np.asarray(ctx.states.geometry, np.int64)[prims[:, P_STATE]]
+    else:
+        geometry = prims[:, P_STATE]
+    key = geometry * 2 + prims[:, P_LMCOLOR_SET]
+    # A group: consecutive triangle primitives of one geometry class (records that
+    # differ at most in fragment state) and one lmcolor_set.
+    brk = np.ones(npr, bool)
+    brk[1:] = ~(tri[1:] & tri[:-1] & (key[1:] == key[:-1]))
+    starts = np.flatnonzero(brk).tolist()
+    ends = starts[1:] + [npr]
+    rows = prims.tolist()
+    for a, b in zip(starts, ends, strict=True):
+        kind, v0, v1, si, lms = rows[a][0], rows[a][1], rows[b - 1][2], rows[a][3], rows[a][4]
+        if v1 == v0:
+            continue  # bgn*/end* without vertices draws nothing
+        state = records[si]
+        sl = slice(v0, v1)
+        lit = _lit(state, sent[sl])
+        if not tri[a]:
+            # Lines and points: one primitive per group (the line-style pattern
+            # restarts at every bgnline).
+            draw_arrays(ctx, state, bool(lms), NAME_OF[kind], pos[sl], col[sl], nrm[sl], lit,
+                        private=True)
+            continue
+        if state.concave or b - a == 1:
+            for r in rows[a:b]:
+                if r[2] == r[1]:
+                    continue
+                ps = slice(r[1], r[2])
+                st = records[r[3]]
+                name = "polygon" if r[0] in (POLYGON, PMV) else NAME_OF[r[0]]
+                draw_arrays(ctx, st, bool(lms), name, pos[ps], col[ps], nrm[ps],
+                            _lit(st, sent[ps]), swaps=swaps[r[5]:r[6]].tolist(),
+                            private=True)
+            continue
+        tris, prov, tri_prim = _group_triangles(rows[a:b], v0, swaps)
+        tri_states = None
+        recs = [records[r[3]] for r in rows[a:b]]
+        if any(r.raster is not state.raster for r in recs):
+            tri_states = (recs, tri_prim)  # one entry per primitive of the group
+        normals = nrm[sl] if state.lighting is not None else None
+        cols = col[sl] if _wants_colour(state) else None
+        defer_triangles(ctx, state, bool(lms), pos[sl], cols, normals,
+                        lit if normals is not None else None, tris, prov, tri_states)
+
+
+def _wants_colour(state) -> bool:
+    from vgxsim.state.raster import needs_colour
+
+    return needs_colour(state.raster)
+
+
+def _group_triangles(rows: list, base: int, swaps: np.ndarray):
+    """Triangles (indices from ``base``), flat-shading vertices and primitive (its
+    position in ``rows``) of consecutive primitives: runs of polygons are fanned in one go, each as
+    assembly.polygon_fan fans it (first vertex, i, i + 1; the last vertex
+    provokes)."""
+    tris, prov, recs, fans, fan_recs = [], [], [], [], []
+    for k, r in enumerate(rows + [None]):
+        if r is not None and r[0] in (POLYGON, PMV):
+            if r[2] > r[1]:
+                fans.append((r[1] - base, r[2] - r[1]))
+                fan_recs.append(k)
+            continue
+        if fans:
+            t, pv = _fans(fans)
+            tris.append(t)
+            prov.append(pv)
+            ntri = np.maximum(np.array([f[1] for f in fans], np.int64) - 2, 0)
+            recs.append(np.repeat(np.array(fan_recs, np.int64), ntri))
+            fans, fan_recs = [], []
+        if r is None or r[2] == r[1]:
+            continue
+        n = r[2] - r[1]
+        off = r[1] - base
+        if r[0] == TMESH:
+            t = assembly.tmesh_triangles(n, swaps[r[5]:r[6]].tolist())
+            pv = t[:, 2].copy()
+        else:
+            t = assembly.qstrip_triangles(n)
+            pv = t.max(axis=1) if t.shape[0] else np.zeros(0, np.int64)
+        t = np.asarray(t, np.int64).reshape(-1, 3)
+        tris.append(t + off)
+        prov.append(np.asarray(pv, np.int64) + off)
+        recs.append(np.full(t.shape[0], k, np.int64))
+    return (np.concatenate(tris).astype(np.int64), np.concatenate(prov).astype(np.int64),
+            np.concatenate(recs))
+
+
+def _fans(polys: list[tuple[int, int]]) -> tuple[np.ndarray, np.ndarray]:
+    """Fan triangles (first, i, i + 1) of consecutive polygons given as (start, size),
+    in order, with each polygon's last vertex as the flat-shading vertex."""
+    start, size = (np.array(v, dtype=np.int64) for v in zip(*polys, strict=True))
+    ntri = np.maximum(size - 2, 0)
+    first = np.repeat(start, ntri)
+    k = np.arange(int(ntri.sum()), dtype=np.int64) - np.repeat(np.cumsum(ntri) - ntri, ntri)
+    tris = np.stack([first, first + 1 + k, first + 2 + k], axis=1)
+    return tris, np.repeat(start + size - 1, ntri)
+
+
+__all__ = ["drain", "LINE", "CLOSEDLINE", "POINT"]

@@ -1,0 +1,308 @@
+"""Drawing primitives from arrays: lighting, deferral, the geometry passes.
+
+Triangles are deferred: consecutive triangle draws with the same draw state
+(:class:`~.records.DrawState`, and the same lmcolor override) are transformed, lit,
+clipped and set up in one vectorized call (Heidmann's DrawObjects: hundreds of
+small polygons); the result is identical because every stage works per vertex or per
+triangle with a row-independent rounding order.  Lines and points are drawn at once
+(their line-style position carries to the next move/draw).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vgxsim.geometry import assembly
+from vgxsim.geometry.pipeline import Viewing, draw_lines, draw_points, draw_triangles
+from vgxsim.geometry.transform import apply
+from vgxsim.lighting import shade
+from vgxsim.state.raster import FLAT, needs_colour
+
+from .records import DrawState, same_projection, same_state
+
+#: Fast-path switch: one geometry pass for consecutive triangle primitives whose
+#: records differ only in fragment state (stencil before every 1991 shadow face).
+#: False: one pass per record (tests/stream/test_random_streams.py compares).
+MERGE_FRAGMENT_STATES = True
+
+POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
+    "polygon", "tmesh", "qstrip", "line", "closedline", "point")
+
+
+def override_of(state: DrawState, lmcolor_set: bool):
+    """The lmcolor mode colours override the material with, or None (lmcolor(3G):
+    colour commands change the bound material until the next lmbind/lmcolor)."""
+    mode = state.lmcolor_mode
+    return mode if (mode not in (0, 6) and lmcolor_set) else None
+
+
+def shade_vertices(state: DrawState, lmcolor_set: bool, obj, normals, colours, lit,
+                   back: bool = False) -> np.ndarray:
+    """Per-vertex colour: lit vertices through the IRIS lighting equation.
+
+    Parameters
+    ----------
+    state : DrawState
+    lmcolor_set : bool
+    obj : ndarray, shape (N, 4); normals : ndarray, shape (N, 3)
+    colours : ndarray, shape (N, 4); lit : ndarray, shape (N,), bool
+    back : bool
+        Light the back side (two-sided lighting: flipped normals and the
+        BACKMATERIAL if one is bound, lmdef(3G) TWOSIDE).
+
+    Returns
+    -------
+    ndarray, shape (N, 4), float64
+    """
+    out = np.array(colours, dtype=np.float64)
+    # cmode lighting (COLORINDEXES) is not modelled: lit vertices keep the
+    # current colour index rather than getting RGB written into index planes.
+    ls = state.lighting
+    if ls is None or not lit.any():
+        return out
+    eye = apply(obj[lit], ls.modelview)
+    pos = eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4])
+    nrm = apply(normals[lit], ls.normal_matrix)
+    override = None
+    mode = override_of(state, lmcolor_set)
+    if mode is not None:
+        override = (mode, np.asarray(colours, np.float64)[lit])
+    facing = np.ones(pos.shape[0], bool) if back else None
+    out[lit] = shade(pos, nrm, ls.material, list(ls.lights), ls.lmodel,
+                     back_material=ls.back_material, facing=facing, color_override=override)
+    return out
+
+
+class PendingTriangles:
+    """Triangle draws queued for one combined geometry pass.
+
+    ``parts`` are (obj, rgba, tris, prov, rasters): vertex colours already lit;
+    ``rasters`` is None (the state's raster) or (list of RasterState, per-triangle
+    index).
+    """
+
+    __slots__ = ("state", "parts", "n")
+
+    def __init__(self, state: DrawState):
+        self.state = state
+        self.parts: list = []
+        self.n = 0
+
+
+def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, tris, prov):
+    """Vertex colours of one part through the lighting equation, with two-sided
+    lighting's duplicated vertices: (obj, rgba, tris, prov)."""
+    if cols is None or normals is None or state.lighting is None:
+        return obj, cols, tris, prov
+    rgba = shade_vertices(state, lmcolor_set, obj, normals, cols, lit)
+    if state.lighting.lmodel.twoside:
+        # Two-sided lighting: back-facing triangles take colours lit from the back
+        # (flipped normal, BACKMATERIAL); vertices are duplicated so a vertex shared
+        # by a front and a back face gets both.
+        back_rgba = shade_vertices(state, lmcolor_set, obj, normals, cols, lit, back=True)
+        backs = _back_facing(apply(obj, state.mvp), tris)
+        n = obj.shape[0]
+        obj = np.concatenate([obj, obj])
+        rgba = np.concatenate([rgba, back_rgba])
+        tris = np.where(backs[:, None], tris + n, tris)
+        prov = np.where(backs, prov + n, prov)
+    return obj, rgba, tris, prov
+
+
+def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
+                    tris, prov, tri_states=None) -> None:
+    """Light one primitive's (or one group's) vertices and queue its triangles on
+    ``ctx`` for a geometry pass shared with the queued ones that project alike.
+
+    ``tri_states`` (list of DrawState, per-triangle index) gives triangles of several
+    records that :func:`~.records.same_geometry` joins; ``state`` is one of them.
+    Lighting is per vertex, so lighting each part on its own gives the colours
+    lighting them together would.
+    """
+    obj, rgba, tris, prov = _lit_colours(state, lmcolor_set, obj, cols, normals, lit, tris,
+                                         prov)
+    pend = ctx.pending_triangles
+    if pend is not None and not (same_state(pend.state, state) or (
+            MERGE_FRAGMENT_STATES and same_projection(pend.state, state))):
+        commit_triangles(ctx)
+        pend = None
+    if pend is None:
+        pend = ctx.pending_triangles = PendingTriangles(state)
+    rasters = None
+    if tri_states is not None:
+        recs, per_tri = tri_states
+        rasters = ([r.raster for r in recs], per_tri)
+    elif state.raster is not pend.state.raster:
+        rasters = ([state.raster], np.zeros(tris.shape[0], np.int64))
+    base = pend.n
+    pend.parts.append((obj, rgba, tris + base, prov + base, rasters))
+    pend.n = base + obj.shape[0]
+
+
+def _triangle_states(pend: PendingTriangles):
+    """(list of RasterState, per-triangle index) of the queued parts, or None when
+    they all draw with the pending state's raster.  The list keeps one entry per
+    primitive (entries may repeat), so a capture of the batch's input
+    (vgxsim.reference.recorder) still sees one record per primitive."""
+    if all(p[4] is None for p in pend.parts):
+        return None
+    states = [pend.state.raster]
+    per = []
+    for p in pend.parts:
+        if p[4] is None:
+            per.append(np.zeros(p[2].shape[0], np.int64))
+            continue
+        rl, idx = p[4]
+        per.append(idx + len(states))
+        states.extend(rl)
+    return states, np.concatenate(per)
+
+
+def commit_triangles(ctx) -> None:
+    """Run the geometry pass of the queued triangles into the batch."""
+    pend, ctx.pending_triangles = ctx.pending_triangles, None
+    if pend is None:
+        return
+    state = pend.state
+    rs = state.raster
+    parts = pend.parts
+    tri_states = _triangle_states(pend)
+
+    def joined(i):
+        # One part (a mesh drawn in one call) needs no concatenation copy.
+        return parts[0][i] if len(parts) == 1 else np.concatenate([p[i] for p in parts])
+
+    obj = joined(0)
+    rgba = joined(1) if parts[0][1] is not None else None
+    tris = joined(2)
+    prov = joined(3)
+    flat = None if (rgba is None or rs.shademodel != FLAT) else rgba[prov]
+    draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth), obj,
+                   rgba, tris, flat, tri_states=tri_states)
+
+
+def as_homogeneous(obj) -> np.ndarray:
+    """(N, 2 | 3 | 4) object coordinates as a private (N, 4) float64 array."""
+    obj = np.asarray(obj, dtype=np.float64)
+    if obj.shape[1] == 3:
+        return np.concatenate([obj, np.ones((obj.shape[0], 1))], axis=1)
+    if obj.shape[1] == 2:
+        return np.concatenate([obj, np.zeros((obj.shape[0], 1)),
+                               np.ones((obj.shape[0], 1))], axis=1)
+    return obj.copy()  # drawing is deferred: keep the caller free to reuse its array
+
+
+def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colours=None,
+                normals=None, lit=None, swaps=(), indices=None, provoking=None,
+                pattern_offset: int = 0, private: bool = False) -> None:
+    """Draw one primitive (or a mesh, with ``indices``) with ``state``.
+
+    See :meth:`vgxsim.pipeline.context.Context.draw_arrays` for the parameters;
+    ``private`` says the arrays are already private float64 (N, 4) copies.
+    """
+    if not private:
+        obj = np.asarray(obj, dtype=np.float64)
+        if obj.ndim != 2 or obj.shape[0] == 0:
+            return
+        obj = as_homogeneous(obj)
+    n = obj.shape[0]
+    if n == 0:
+        return
+    if ctx.select_hook is not None:  # pick/select mode: hit-test, draw nothing
+        ctx.select_hook(kind, apply(obj, state.mvp), swaps, indices)
+        return
+    rs = state.raster
+    cols = None
+    lighting = normals is not None and state.lighting is not None
+    if needs_colour(rs):
+        if colours is None:
+            cols = np.broadcast_to(np.asarray(ctx.colour, np.float64), (n, 4))
+        else:
+            cols = np.asarray(colours, np.float64)
+    litm = None
+    if lighting:
+        litm = np.ones(n, bool) if lit is None else np.asarray(lit, bool)
+    view = Viewing(state.mvp, state.viewport, state.depth)
+    if kind not in (LINE, CLOSEDLINE, POINT):
+        tris, prov = triangles_of(state, kind, n, obj, view, swaps, indices, provoking)
+        if cols is not None and not private:
+            cols = np.array(cols, dtype=np.float64)
+        nrm = None
+        if lighting:
+            nrm = normals if private else np.array(normals, np.float64)
+        defer_triangles(ctx, state, lmcolor_set, obj, cols, nrm, litm, tris, prov)
+        return
+    commit_triangles(ctx)
+    rgba = None
+    if cols is not None:
+        if lighting:
+            rgba = shade_vertices(state, lmcolor_set, obj, np.asarray(normals, np.float64),
+                                  cols, litm)
+        else:
+            rgba = np.array(cols, dtype=np.float64)
+    if kind in (LINE, CLOSEDLINE):
+        segs = assembly.line_segments(n, kind == CLOSEDLINE)
+        starts, end = _pattern_starts(obj, segs, view)
+        draw_lines(ctx.raw_batch, rs, view, obj, rgba, segs, starts + int(pattern_offset))
+        ctx.linestyle_pos = int(pattern_offset) + end
+        return
+    draw_points(ctx.raw_batch, rs, view, obj, rgba)
+
+
+def triangles_of(state: DrawState, kind, n, obj, view, swaps, indices, provoking):
+    """Triangles of a primitive and, per triangle, the vertex whose colour it
+    takes under shademodel(FLAT) (the last vertex, shademodel(3G))."""
+    if kind == POLYGON:
+        tris = (_concave_triangles(obj, view) if state.concave
+                else assembly.polygon_fan(n))
+        prov = np.full(len(tris), n - 1, np.int64)
+    elif kind == TMESH:
+        tris = assembly.tmesh_triangles(n, list(swaps))
+        prov = tris[:, 2].copy()
+    elif kind == QSTRIP:
+        tris = assembly.qstrip_triangles(n)
+        # Both triangles of a quad take its last vertex (q + 3), the largest index.
+        prov = tris.max(axis=1)
+    elif kind == "triangles":
+        tris = np.asarray(indices, np.int64).reshape(-1, 3)
+        prov = tris[:, 2].copy() if provoking is None else np.asarray(provoking, np.int64)
+    else:
+        raise ValueError(f"unknown primitive kind {kind!r}")
+    return np.asarray(tris, np.int64).reshape(-1, 3), prov
+
+
+def _pattern_starts(obj, segs, view) -> tuple[np.ndarray, int]:
+    """Line-style position of each segment (it continues along a polyline), and
+    the position after the last segment."""
+    if segs.shape[0] == 0:
+        return np.zeros(0, np.int64), 0
+    clip = apply(obj, view.mvp)
+    w = np.where(clip[:, 3] == 0, 1e-30, clip[:, 3])
+    l, r, b, t = view.viewport
+    x = (clip[:, 0] / w + 1) * (r - l + 1) / 2
+    y = (clip[:, 1] / w + 1) * (t - b + 1) / 2
+    steps = np.maximum(np.abs(np.round(x[segs[:, 1]]) - np.round(x[segs[:, 0]])),
+                       np.abs(np.round(y[segs[:, 1]]) - np.round(y[segs[:, 0]])))
+    steps = np.nan_to_num(steps, nan=0.0, posinf=0.0, neginf=0.0).astype(np.int64)
+    total = np.cumsum(steps)
+    return np.concatenate([[0], total[:-1]]).astype(np.int64), int(total[-1])
+
+
+def _concave_triangles(obj, view) -> np.ndarray:
+    clip = apply(obj, view.mvp)
+    w = np.where(np.abs(clip[:, 3]) < 1e-300, 1e-300, clip[:, 3])
+    xy = np.stack([clip[:, 0] / w, clip[:, 1] / w], axis=1)
+    return assembly.triangulate_concave(xy)
+
+
+def _back_facing(clip: np.ndarray, tris: np.ndarray) -> np.ndarray:
+    """Per triangle, whether it is clockwise in window coordinates (back-facing).
+
+    The sign of det[x y w] of the clip-space vertices times the sign of w0*w1*w2 is
+    the sign of the window-space area (the viewport scales x and y positively).
+    """
+    a, b, c = clip[tris[:, 0]], clip[tris[:, 1]], clip[tris[:, 2]]
+    det = (a[:, 0] * (b[:, 1] * c[:, 3] - b[:, 3] * c[:, 1])
+           - a[:, 1] * (b[:, 0] * c[:, 3] - b[:, 3] * c[:, 0])
+           + a[:, 3] * (b[:, 0] * c[:, 1] - b[:, 1] * c[:, 0]))
+    return det * np.sign(a[:, 3] * b[:, 3] * c[:, 3]) < 0

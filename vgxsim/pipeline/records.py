@@ -1,0 +1,164 @@
+"""Draw-state records: what a primitive is drawn with, interned once per value.
+
+A STATE op of the command stream carries the index of one :class:`DrawState` in its
+window's table.  Records are compared by identity: the parts are immutable
+(RasterState snapshots, matrices and lighting definitions are replaced, never
+mutated), so a record is made once per distinct combination, when a bgn* finds the
+window's state changed since the last STATE op.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from vgxsim.state.raster import RasterState, needs_colour
+
+
+class LightingState(NamedTuple):
+    """Everything per-vertex lighting reads (lmbind(3G)), without the lmcolor
+    override, which the stream carries per primitive.
+
+    Attributes
+    ----------
+    modelview : ndarray, shape (4, 4)
+    normal_matrix : ndarray, shape (3, 3)
+    material, lmodel : lighting definitions
+    lights : tuple of bound lights, eye space
+    back_material : the BACKMATERIAL or None
+    """
+
+    modelview: np.ndarray
+    normal_matrix: np.ndarray
+    material: object
+    lmodel: object
+    lights: tuple
+    back_material: object
+
+
+class DrawState(NamedTuple):
+    """One interned draw state.
+
+    Attributes
+    ----------
+    raster : RasterState
+    mvp : ndarray, shape (4, 4), float64
+    viewport : tuple of 4 int
+    depth : tuple of 2 float
+    lighting : LightingState or None
+        None when lighting is off (or in cmode).
+    lmcolor_mode : int
+    concave : bool
+    """
+
+    raster: RasterState
+    mvp: np.ndarray
+    viewport: tuple
+    depth: tuple
+    lighting: LightingState | None
+    lmcolor_mode: int
+    concave: bool
+
+
+def lighting_state(ctx) -> LightingState | None:
+    """The window's lighting, or None when it is off (lmbind(3G))."""
+    if not ctx.lighting_active() or not ctx.config.rgb:
+        return None
+    lights = tuple(entry for _slot, (_i, entry) in sorted(ctx.bound["lights"].items()))
+    back = ctx.bound.get("backmaterial", 0)
+    return LightingState(ctx.matrices.modelview_matrix(), ctx.matrices.normal_matrix(),
+                         ctx.lighting.material(ctx.bound["material"]),
+                         ctx.lighting.lmodel(ctx.bound["lmodel"]), lights,
+                         ctx.lighting.material(back) if back else None)
+
+
+def same_lighting(a: LightingState | None, b: LightingState | None) -> bool:
+    if a is None or b is None:
+        return a is b
+    if len(a.lights) != len(b.lights) or a.back_material is not b.back_material:
+        return False
+    return (a.modelview is b.modelview and a.normal_matrix is b.normal_matrix
+            and a.material is b.material and a.lmodel is b.lmodel
+            and all(x is y for x, y in zip(a.lights, b.lights, strict=True)))
+
+
+def same_state(a: DrawState, b: DrawState) -> bool:
+    """Whether two records draw alike (identity of their immutable parts)."""
+    if a is b:
+        return True
+    return (a.raster is b.raster and a.mvp is b.mvp and a.viewport == b.viewport
+            and a.depth == b.depth and a.lmcolor_mode == b.lmcolor_mode
+            and a.concave == b.concave and same_lighting(a.lighting, b.lighting))
+
+
+def same_geometry(a: DrawState, b: DrawState) -> bool:
+    """Whether two records differ at most in what only the fragment stage reads
+    (stencil, z and blend functions, write masks, cull): then their triangles share
+    one geometry pass (transform, lighting, clipping, projection, snapping)."""
+    ra, rb = a.raster, b.raster
+    return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
+            and a.lmcolor_mode == b.lmcolor_mode and a.concave == b.concave
+            and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
+            and needs_colour(ra) == needs_colour(rb)
+            and same_lighting(a.lighting, b.lighting))
+
+
+def same_projection(a: DrawState, b: DrawState) -> bool:
+    """Whether the lit vertices of two records go through one geometry pass alike:
+    the same transform, viewport, depth range, snapping and shading model, and both
+    with or both without vertex colour (lighting is applied before, per part)."""
+    ra, rb = a.raster, b.raster
+    return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
+            and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
+            and needs_colour(ra) == needs_colour(rb))
+
+
+class StateTable:
+    """A window's interned DrawState records (indices of STATE ops).
+
+    ``geometry[i]`` numbers the geometry class of record ``i``: consecutive records
+    that :func:`same_geometry` joins share a number.
+    """
+
+    def __init__(self):
+        self.records: list[DrawState] = []
+        self.geometry: list[int] = []
+        self._last: DrawState | None = None
+        self._index: dict[tuple, int] = {}
+
+    def intern(self, ctx) -> int:
+        """Index of the window's current draw state (one record per distinct value:
+        the key holds the identities of its immutable parts and the lighting
+        serial, which every lighting call bumps)."""
+        rs = ctx.raster.snapshot()
+        mvp = ctx.matrices.mvp()
+        key = (id(rs), id(mvp), ctx.raster.viewport, ctx.depth_range, ctx.lighting_serial,
+               ctx.lmcolor_mode, ctx.concave, ctx.config.rgb, id(ctx.bound["lights"]))
+        idx = self._index.get(key)
+        if idx is not None and self.records[idx].raster is rs and self.records[idx].mvp is mvp:
+            return idx
+        idx = self._new(ctx)
+        self._index[key] = idx
+        return idx
+
+    def _new(self, ctx) -> int:
+        rec = DrawState(ctx.raster.snapshot(), ctx.matrices.mvp(), ctx.raster.viewport,
+                        ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
+                        bool(ctx.concave))
+        last = self._last
+        if last is not None and same_state(last, rec):
+            return len(self.records) - 1
+        if last is not None and same_geometry(last, rec):
+            self.geometry.append(self.geometry[-1])
+        else:
+            self.geometry.append(len(self.records))
+        self.records.append(rec)
+        self._last = rec
+        return len(self.records) - 1
+
+    def clear(self) -> None:
+        self.records.clear()
+        self.geometry.clear()
+        self._index.clear()
+        self._last = None

@@ -1,0 +1,46 @@
+"""Opcodes of the command stream (the VGX's command FIFO, in software).
+
+Every recordable drawing call of :mod:`vgxsim.gl` appends one opcode to the
+stream's int64 ``ops`` buffer, followed by its integer payload there, and its float
+payload to the float64 ``fl`` buffer.  The decoder (:mod:`vgxsim.kernels.decode`)
+walks both buffers once.  Numba reads these names as global constants.
+
+=========  ===========================  ===============================================
+opcode     int payload (in ``ops``)     float payload (in ``fl``)
+=========  ===========================  ===============================================
+V          --                           x, y, z, w: a vertex with the current attributes
+SYNC       sent_normal, lmcolor_set     r, g, b, a, nx, ny, nz: immediate-mode
+                                        attributes, sent when they changed (gl side
+                                        is the source of truth in immediate mode)
+C          --                           r, g, b, a: colour call, colour wins (lighting
+                                        off or LMC_COLOR: the vertex is coloured)
+CM         --                           r, g, b, a: colour call changing the material
+                                        (LMC_EMISSION .. LMC_AD: the vertex stays lit)
+CSKIP      --                           r, g, b, a: colour call ignored (LMC_NULL)
+CRAW       --                           r, g, b, a: a colour call recorded in a display
+                                        object, rewritten to C, CM or CSKIP when the
+                                        object is spliced (its meaning depends on the
+                                        caller's lighting, lmcolor(3G))
+N          --                           nx, ny, nz: n3f; the normal was sent last
+BGN        primitive kind               --
+END        --                           --
+SWAP       --                           -- (swaptmesh)
+STATE      state-record index           -- (the interned draw state for what follows)
+=========  ===========================  ===============================================
+"""
+
+from __future__ import annotations
+
+V, SYNC, C, CM, CSKIP, CRAW, N, BGN, END, SWAP, STATE = range(11)
+
+#: Primitive kinds carried by BGN.  PMV is the old-style pmv/pdr/pclos polygon.
+POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT, PMV = range(7)
+KIND_OF = {"polygon": POLYGON, "tmesh": TMESH, "qstrip": QSTRIP, "line": LINE,
+           "closedline": CLOSEDLINE, "point": POINT, "pmv": PMV}
+NAME_OF = {v: k for k, v in KIND_OF.items()}
+#: Kinds drawn as triangles (and so merged into one geometry pass per state record).
+TRIANGLE_KINDS = (POLYGON, TMESH, QSTRIP, PMV)
+
+#: Columns of a decoded primitive row (int64).
+P_KIND, P_V0, P_V1, P_STATE, P_LMCOLOR_SET, P_SWAP0, P_SWAP1 = range(7)
+PRIM_COLUMNS = 7
