@@ -8,6 +8,7 @@ images from a shell script" (README) are what remains here, headless::
                    [--light N] [--soft [N|figure6]] [--soft-max N] [--seed N]
                    [--rotate AZ,EL] [--translate X,Y] [--dolly D] [--spin N] [--fps F]
                    [--subpixel on|off] [--edges silhouette|all] [--signs screen|article]
+                   [--technique NAME] [--option KEY=VALUE ...]
                    [--scheduler ADDRESS | --local] [--workers N]
     vgxsim shadows [SCENE] --window [--record DIR|FILE] [--record-events FILE] [options]
     vgxsim shadows [SCENE] --events FILE [--record DIR|FILE] [options]
@@ -116,6 +117,14 @@ def add_parsers(sub, size_type, positive_int) -> None:
     sh.add_argument("--signs", choices=SIGNS, default="screen",
                     help="INCR/DECR per face from the rasterizer's facing (screen, default) "
                          "or the article's 3-D test (article)")
+    from .techniques import TECHNIQUES
+
+    sh.add_argument("--technique", choices=tuple(TECHNIQUES), default=None,
+                    help="a shadow technique since 1991 for the shadows mode (default: the "
+                         "1991 code as printed)")
+    sh.add_argument("--option", action="append", default=[], metavar="KEY=VALUE",
+                    help="an option of the technique, e.g. --option size=1024 (numbers, "
+                         "true/false and none are converted)")
     sh.add_argument("--no-cache", action="store_true",
                     help="rebuild model adjacency instead of using the cache")
     sh.add_argument("--overwrite", action="store_true",
@@ -198,6 +207,30 @@ def api_frames(soft) -> int:
     return _frames_for(soft)
 
 
+def _technique_options(items: list[str]) -> dict:
+    """``KEY=VALUE`` strings to keyword options (int, float, bool, None or str)."""
+    out: dict = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep or not key:
+            raise ValueError(f"expected KEY=VALUE, got {item!r}")
+        low = text.lower()
+        value: object = text
+        if low in ("true", "false"):
+            value = low == "true"
+        elif low == "none":
+            value = None
+        else:
+            for conv in (int, float):
+                try:
+                    value = conv(text)
+                    break
+                except ValueError:
+                    pass
+        out[key] = value
+    return out
+
+
 def run_shadows(ns: argparse.Namespace) -> int:
     """Carry out ``vgxsim shadows``; returns the exit status."""
     from dataclasses import replace
@@ -249,8 +282,22 @@ def run_shadows(ns: argparse.Namespace) -> int:
         if not any(lt.jitterable for lt in scene.lights):
             print(f"{prog}: note: no light of this scene has JITTER, so soft shadows look "
                   "hard", file=sys.stderr)
+    try:
+        options = _technique_options(ns.option)
+    except ValueError as exc:
+        print(f"{prog}: --option: {exc}", file=sys.stderr)
+        return 2
     kw = dict(mode=ns.mode, size=ns.size, light=ns.light, seed=ns.seed, edges=ns.edges,
               subpixel=ns.subpixel, signs=ns.signs)
+    if ns.technique is not None:
+        from .techniques import TechniqueError, make
+
+        try:
+            make(ns.technique, **options)
+        except TechniqueError as exc:
+            print(f"{prog}: --technique {ns.technique}: {exc}", file=sys.stderr)
+            return 2
+        kw.update(technique=ns.technique, technique_options=options)
     farmed = bool(ns.spin or soft) and not ns.local
     try:
         with warnings.catch_warnings(record=True) as caught:
