@@ -120,7 +120,11 @@ def _array(name: str, args: tuple, values, n: int | None, what: str, width: int)
     """Flat numbers (the binding's form) or nested rows/numpy arrays, as (k, width)."""
     if isinstance(values, np.ndarray) or (isinstance(values, (list, tuple)) and values and
                                           isinstance(values[0], (list, tuple, np.ndarray))):
-        a = np.asarray(values, dtype=np.float64).reshape(-1)
+        try:
+            a = np.asarray(values, dtype=np.float64).reshape(-1)
+        except (TypeError, ValueError, OverflowError):  # ragged rows, strings, None ...
+            raise GLTypeError(f"{describe(name, args)}: {what} must be numbers, as flat "
+                              "values or rows of equal length") from None
         flat = a.tolist()
     else:
         flat = flat_numbers(name, (values,), None)
@@ -134,6 +138,14 @@ def _array(name: str, args: tuple, values, n: int | None, what: str, width: int)
     if not np.all(np.isfinite(a)):
         raise GLValueError(f"{describe(name, args)}: {what} must be finite")
     return a
+
+
+def _last_geom(name: str, args: tuple):
+    """The geometry of ``crvn(geom)`` or ``crvn(n, geom)``."""
+    if len(args) not in (1, 2):
+        raise GLTypeError(f"{describe(name, args)}: expected 1 or 2 arguments (geom, or "
+                          f"n and geom), got {len(args)}")
+    return args[-1]
 
 
 def _basis(name: str, args: tuple, bid: int) -> np.ndarray:
@@ -218,7 +230,7 @@ def crv(*args) -> None:
 def crvn(*args) -> None:
     """crvn(geom): segments through n points (3n numbers; n implied, as the binding
     did) (crvn(3G)); ``crvn(n, geom)`` is accepted too."""
-    g = args[-1]
+    g = _last_geom("crvn", args)
     arr = _array("crvn", args, g, None, "geom", 3)
     if len(args) == 2 and as_int("crvn", args, "n", args[0]) != arr.shape[0]:
         raise GLTypeError(f"{describe('crvn', args)}: n does not match the points given")
@@ -235,7 +247,7 @@ def rcrv(*args) -> None:
 @gl_function(record=False)
 def rcrvn(*args) -> None:
     """rcrvn(geom): rational segments through n homogeneous points (4n numbers)."""
-    g = args[-1]
+    g = _last_geom("rcrvn", args)
     arr = _array("rcrvn", args, g, None, "geom", 4)
     if len(args) == 2 and as_int("rcrvn", args, "n", args[0]) != arr.shape[0]:
         raise GLTypeError(f"{describe('rcrvn', args)}: n does not match the points given")

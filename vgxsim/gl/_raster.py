@@ -168,7 +168,7 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
     manual allows stencil only where planes exist, and the kernels skip the test.
     """
     ctx = current("stencil", (enable, ref, func, mask, fail, pass_, zpass))
-    if (enable and isinstance(enable, int) and isinstance(ref, int) and isinstance(func, int)
+    if (isinstance(enable, int) and enable and isinstance(ref, int) and isinstance(func, int)
             and isinstance(mask, int) and isinstance(fail, int) and isinstance(pass_, int)
             and isinstance(zpass, int) and 0 <= func <= 7 and 0 <= fail <= 5
             and 0 <= pass_ <= 5 and 0 <= zpass <= 5):
