@@ -1,7 +1,7 @@
 """A long hostile-input campaign over every public vgxsim.gl call (issue 11 item 5).
 
     python bench/fuzz_campaign.py [--calls 100000] [--seed 0] [--per-sequence 40]
-                                  [--per-call-s 10] [--json FILE]
+                                  [--per-call-s 60] [--json FILE]
 
 Draws random call sequences with the generator of tests/gl/test_fuzz.py (random
 calls, argument counts and kinds), counts every exception outside the GLError family
@@ -37,7 +37,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--calls", type=int, default=100_000)
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--per-sequence", type=int, default=40)
-    p.add_argument("--per-call-s", type=float, default=10.0)
+    p.add_argument("--per-call-s", type=float, default=60.0)
     p.add_argument("--json", help="write the counts to this file")
     a = p.parse_args(argv)
     fuzz = _load_generator()

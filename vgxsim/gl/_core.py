@@ -172,6 +172,17 @@ def flat_numbers(name: str, args: tuple, n: int | None, integer: bool = False) -
     return out
 
 
+def as_array(name: str, args: tuple, what: str, v, dtype=None) -> np.ndarray:
+    """``np.asarray(v, dtype)`` of an array argument; ragged nesting, strings where
+    numbers belong and other values numpy cannot convert raise GLTypeError naming the
+    call (numpy's own ValueError/TypeError would not)."""
+    try:
+        return np.asarray(v) if dtype is None else np.asarray(v, dtype=dtype)
+    except (TypeError, ValueError, OverflowError):
+        raise GLTypeError(f"{describe(name, args)}: {what} must be numbers, as a flat "
+                          "sequence or rows of equal length") from None
+
+
 def check_token(name: str, args: tuple, what: str, v, allowed, family: str = "") -> int:
     """An int token that must be one of ``allowed``."""
     iv = as_int(name, args, what, v)

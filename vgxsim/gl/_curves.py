@@ -50,6 +50,7 @@ from ._core import (
     GLTypeError,
     GLUsageError,
     GLValueError,
+    as_array,
     as_int,
     current,
     describe,
@@ -57,6 +58,9 @@ from ._core import (
     gl_function,
     topic_state,
 )
+
+#: Largest short, the type of curveit's iteration count (curveit(3G)).
+_SHORT_MAX = 0x7FFF
 
 __all__ = [
     "defbasis", "curvebasis", "curveprecision", "crv", "crvn", "rcrv", "rcrvn", "curveit",
@@ -120,11 +124,7 @@ def _array(name: str, args: tuple, values, n: int | None, what: str, width: int)
     """Flat numbers (the binding's form) or nested rows/numpy arrays, as (k, width)."""
     if isinstance(values, np.ndarray) or (isinstance(values, (list, tuple)) and values and
                                           isinstance(values[0], (list, tuple, np.ndarray))):
-        try:
-            a = np.asarray(values, dtype=np.float64).reshape(-1)
-        except (TypeError, ValueError, OverflowError):  # ragged rows, strings, None ...
-            raise GLTypeError(f"{describe(name, args)}: {what} must be numbers, as flat "
-                              "values or rows of equal length") from None
+        a = as_array(name, args, what, values, np.float64).reshape(-1)
         flat = a.tolist()
     else:
         flat = flat_numbers(name, (values,), None)
@@ -260,8 +260,9 @@ def curveit(iterations: int) -> None:
     times, drawing a line through the points (module docstring)."""
     args = (iterations,)
     n = as_int("curveit", args, "iterations", iterations)
-    if n < 0:
-        raise GLValueError(f"{describe('curveit', args)}: iterations must be >= 0")
+    if not 0 <= n <= _SHORT_MAX:  # curveit(3G) takes a short iteration count
+        raise GLValueError(f"{describe('curveit', args)}: iterations must be 0..{_SHORT_MAX} "
+                           "(a short)")
     ctx = current("curveit", args)
     rows = np.array(ctx.matrices.current(), dtype=np.float64)
     pts = [rows[0].copy()]

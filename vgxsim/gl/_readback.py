@@ -35,6 +35,7 @@ from ._core import (
     GLTypeError,
     GLUsageError,
     GLValueError,
+    as_array,
     as_int,
     current,
     describe,
@@ -139,7 +140,7 @@ def _words(name: str, args: tuple, data, n: int) -> np.ndarray:
         return np.frombuffer(raw, dtype="<u4", count=n).astype(np.int64)
     if isinstance(data, np.ndarray) or (isinstance(data, Sequence) and not isinstance(
             data, str)):
-        arr = np.asarray(data)
+        arr = as_array(name, args, "data", data)
         if arr.dtype.kind not in "iub":
             raise GLTypeError(f"{describe(name, args)}: pixel values must be integers, not "
                               f"{arr.dtype}")
