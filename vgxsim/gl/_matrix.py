@@ -33,6 +33,7 @@ from ._core import (
     describe,
     flat_numbers,
     gl_function,
+    session,
     topic_state,
 )
 
@@ -239,10 +240,19 @@ def rot(*args) -> None:
 @gl_function(record=True)
 def translate(*args) -> None:
     """translate(x, y, z): premultiply a translation."""
+    if len(args) == 3:
+        x, y, z = args
+        # Fast path: three finite floats (x - x is 0.0 only for finite x).
+        if (type(x) is float and type(y) is float and type(z) is float
+                and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
+            ctx = session.windows.get(session.current)
+            if ctx is not None:
+                ctx.matrices.translate(x, y, z)
+                return
     name = "translate"
     v = _floats(name, args, ("x", "y", "z"))
     _finite(name, args, v)
-    current(name, args).matrices.mult(T.translation(*v))
+    current(name, args).matrices.translate(*v)
 
 
 @gl_function(record=True)
@@ -266,7 +276,11 @@ def pushmatrix(*args) -> None:
     after its popmatrix; save the projection with getmatrix and restore it with
     loadmatrix instead.
     """
-    ctx = current("pushmatrix", args)
+    if args:
+        _nargs("pushmatrix", args, 0)
+    ctx = session.windows.get(session.current)
+    if ctx is None:
+        ctx = current("pushmatrix", args)
     try:
         ctx.matrices.push()
     except MatrixModeError:
@@ -280,7 +294,11 @@ def pushmatrix(*args) -> None:
 def popmatrix(*args) -> None:
     """popmatrix(): discard the top of the matrix stack; GLUsageError in MPROJECTION
     and MTEXTURE, whose matrices are not stacked (see :func:`pushmatrix`)."""
-    ctx = current("popmatrix", args)
+    if args:
+        _nargs("popmatrix", args, 0)
+    ctx = session.windows.get(session.current)
+    if ctx is None:
+        ctx = current("popmatrix", args)
     try:
         ctx.matrices.pop()
     except MatrixModeError:
