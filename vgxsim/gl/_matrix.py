@@ -35,6 +35,7 @@ from ._core import (
     gl_function,
     session,
     topic_state,
+    window_of,
 )
 
 __all__ = [
@@ -399,8 +400,8 @@ def _viewing_of(name: str, args: tuple, obj) -> tuple:
 
 def _unproject(ctx, mvp, vp, sx: float, sy: float, zndc: float) -> np.ndarray:
     l, r, b, t = vp
-    x = 2.0 * (sx - getattr(ctx, "origin", (0, 0))[0] - l + 0.5) / (r - l + 1) - 1.0
-    y = 2.0 * (sy - getattr(ctx, "origin", (0, 0))[1] - b + 0.5) / (t - b + 1) - 1.0
+    x = 2.0 * (sx - window_of(ctx).origin[0] - l + 0.5) / (r - l + 1) - 1.0
+    y = 2.0 * (sy - window_of(ctx).origin[1] - b + 0.5) / (t - b + 1) - 1.0
     try:
         inv = np.linalg.inv(mvp)
     except np.linalg.LinAlgError:
@@ -470,7 +471,7 @@ def screenspace(*args) -> None:
     from ._window import scrmask, viewport
 
     ctx = current("screenspace", args)
-    ox, oy = getattr(ctx, "origin", (0, 0))
+    ox, oy = window_of(ctx).origin
     viewport(-ox, int(GL.XMAXSCREEN) - ox, -oy, int(GL.YMAXSCREEN) - oy)
     scrmask(0, ctx.width - 1, 0, ctx.height - 1)
     ortho2(-0.5, int(GL.XMAXSCREEN) + 0.5, -0.5, int(GL.YMAXSCREEN) + 0.5)
