@@ -11,7 +11,7 @@ import pytest
 
 import vgxsim.gl as gl
 from vgxsim import GL
-from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError, session
+from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError, session, window_of
 from vgxsim.pipeline.context import CLEAR_COLOUR
 from vgxsim.sinks import MemorySink, PNGSequenceSink
 
@@ -125,8 +125,9 @@ def test_titles_and_no_op_requests():
     g = gl.winopen("first")
     gl.wintitle("renamed")
     gl.icontitle("icon")
-    assert ctx_of(g).title == "renamed" and ctx_of(g).icontitle == "icon"
-    assert ctx_of(g).constraints["noborder"] is True
+    rec = window_of(ctx_of(g))  # the gl layer's bookkeeping of the window
+    assert rec.title == "renamed" and rec.icontitle == "icon"
+    assert rec.constraints["noborder"] is True
 
 
 # -- configuration -------------------------------------------------------------------------
@@ -429,3 +430,21 @@ def test_integers_past_32_bits_are_refused():
     # unsigned long masks and colours are reduced modulo 2**32 as C does
     gl.cpack(2 ** 63 + 0x10)
     assert gl.gRGBcolor() == (0x10, 0, 0)
+
+
+def test_session_reset_clears_the_window_bookkeeping():
+    # Constraints pending for the next winopen, the focus entry still to come and the
+    # Window records are session state: reset() drops them all.
+    gl.keepaspect(1, 2)
+    gl.noborder()
+    g = gl.winopen("before")
+    gl.winmove(30, 40)
+    ctx = ctx_of(g)
+    gl.maxsize(100, 100)
+    session.reset()
+    assert session.constraints == {} and session.focus_pending is None
+    assert ctx not in session.window_records
+    g = gl.winopen("after")
+    assert gl.getsize() == (640, 512)  # no maxsize, no keepaspect: the default size
+    assert gl.getorigin() == (0, 0)
+    assert window_of(ctx_of(g)).constraints == {}

@@ -36,6 +36,7 @@ from ._core import (
     describe,
     flat_numbers,
     gl_function,
+    session,
 )
 
 __all__ = [
@@ -73,14 +74,21 @@ def packed_colour(ctx) -> int:
 
 def _set_rgba(ctx, rgba: tuple[float, float, float, float]) -> None:
     """Route an RGB colour command through lmcolor(3G) (see the module docstring)."""
-    lit = ctx.lighting_active()
-    if lit and ctx.lmcolor_mode == GL.LMC_NULL:
+    if not ctx.lighting_active():
+        ctx.colour = rgba
+        ctx.last_sent = "colour"
+        return
+    mode = ctx.lmcolor_mode
+    if mode == _LMC_NULL:
         return
     ctx.colour = rgba
-    if lit and ctx.lmcolor_mode != GL.LMC_COLOR:
+    if mode != _LMC_COLOR:
         ctx.lmcolor_set = True  # a material property now, the vertex stays lit
     else:
         ctx.last_sent = "colour"
+
+
+_LMC_NULL, _LMC_COLOR = int(GL.LMC_NULL), int(GL.LMC_COLOR)
 
 
 def _floats(name: str, args: tuple, n: int) -> tuple[float, ...]:
@@ -140,8 +148,11 @@ def _colour_call(name: str, rgba_of, doc: str):
     record)."""
 
     def body(*args) -> None:
-        ctx = current(name, args)
-        _need_rgb(ctx, name, args)
+        ctx = session.windows.get(session.current)
+        if ctx is None:
+            ctx = current(name, args)
+        if not ctx.config.rgb:
+            _need_rgb(ctx, name, args)
         _set_rgba(ctx, rgba_of(args))
 
     body.__name__ = body.__qualname__ = name
@@ -173,6 +184,13 @@ def cpack(abgr: int) -> None:
     Red is the low byte; alpha comes from the high byte, so ``cpack(0xFF)`` is red
     with alpha 0.
     """
+    ctx = session.windows.get(session.current)
+    if ctx is not None and type(abgr) is int and ctx.config.rgb:
+        # Fast path (a plain int in RGB mode): _cpack_rgba inlined.
+        w = abgr & 0xFFFFFFFF  # C unsigned long
+        _set_rgba(ctx, (_BYTE[w & 0xFF], _BYTE[(w >> 8) & 0xFF], _BYTE[(w >> 16) & 0xFF],
+                        _BYTE[w >> 24]))
+        return
     args = (abgr,)
     ctx = current("cpack", args)
     if not ctx.config.rgb:

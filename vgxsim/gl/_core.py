@@ -18,6 +18,8 @@ import inspect
 import math
 import numbers
 from collections.abc import Sequence
+from dataclasses import dataclass, field
+from weakref import WeakKeyDictionary
 
 import numpy as np
 
@@ -51,8 +53,27 @@ def describe(name: str, args: tuple) -> str:
     return f"{name}({', '.join(parts)})"
 
 
+@dataclass
+class Window:
+    """What IRIS GL keeps about a window that the pipeline never reads (winopen(3G),
+    wintitle, icontitle, winposition/winmove, winconstraints): its gid, titles, the
+    screen position of its lower-left corner, the constraints it was opened under,
+    and the screen last handed to its frame sink (``"fresh"``: the planes as
+    allocated; None: nothing yet, or a double-buffered window)."""
+
+    gid: int = 0
+    title: str = ""
+    icontitle: str = ""
+    origin: tuple[int, int] = (0, 0)
+    constraints: dict = field(default_factory=dict)
+    shown: object = None
+
+
 class _Session:
-    """Process-wide IRIS GL state: windows, the current one, window preferences."""
+    """Process-wide IRIS GL state: windows, the current one, window preferences.
+
+    The one owner of the gl layer's process state: :meth:`reset` clears all of it
+    (no gl or events module keeps state of its own)."""
 
     def __init__(self):
         self.reset()
@@ -75,6 +96,14 @@ class _Session:
         # object's recorder (gl/_objects.py), or None in immediate mode.
         self.recording = None
         self.topics: dict[str, object] = {}  # per-topic state, see topic_state()
+        # The Window record of each Context (window_of()); weak, so a Context installed
+        # without winopen (tests, library users) takes its record with it.
+        self.window_records: WeakKeyDictionary = WeakKeyDictionary()
+        # Constraints (keepaspect, minsize, maxsize, iconsize, noborder) for the next
+        # winopen or winconstraints, which use them up (winconstraints(3G)).
+        self.constraints: dict = {}
+        # (queue, gid): the window whose INPUTCHANGE entry the next read delivers.
+        self.focus_pending: tuple | None = None
 
 
 session = _Session()
@@ -88,6 +117,15 @@ def topic_state(key: str, factory):
     if state is None:
         state = session.topics[key] = factory()
     return state
+
+
+def window_of(ctx) -> Window:
+    """The :class:`Window` record of a window's Context (a default one, at the screen
+    origin, for a Context installed without winopen)."""
+    rec = session.window_records.get(ctx)
+    if rec is None:
+        rec = session.window_records[ctx] = Window()
+    return rec
 
 
 def current(name: str, args: tuple = ()):
@@ -172,6 +210,17 @@ def flat_numbers(name: str, args: tuple, n: int | None, integer: bool = False) -
         else:
             out.append(as_float(name, args, f"element {i}", v))
     return out
+
+
+def as_array(name: str, args: tuple, what: str, v, dtype=None) -> np.ndarray:
+    """``np.asarray(v, dtype)`` of an array argument; ragged nesting, strings where
+    numbers belong and other values numpy cannot convert raise GLTypeError naming the
+    call (numpy's own ValueError/TypeError would not)."""
+    try:
+        return np.asarray(v) if dtype is None else np.asarray(v, dtype=dtype)
+    except (TypeError, ValueError, OverflowError):
+        raise GLTypeError(f"{describe(name, args)}: {what} must be numbers, as a flat "
+                          "sequence or rows of equal length") from None
 
 
 def check_token(name: str, args: tuple, what: str, v, allowed, family: str = "") -> int:

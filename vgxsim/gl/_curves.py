@@ -50,6 +50,7 @@ from ._core import (
     GLTypeError,
     GLUsageError,
     GLValueError,
+    as_array,
     as_int,
     current,
     describe,
@@ -57,6 +58,9 @@ from ._core import (
     gl_function,
     topic_state,
 )
+
+#: Largest short, the type of curveit's iteration count (curveit(3G)).
+_SHORT_MAX = 0x7FFF
 
 __all__ = [
     "defbasis", "curvebasis", "curveprecision", "crv", "crvn", "rcrv", "rcrvn", "curveit",
@@ -120,7 +124,7 @@ def _array(name: str, args: tuple, values, n: int | None, what: str, width: int)
     """Flat numbers (the binding's form) or nested rows/numpy arrays, as (k, width)."""
     if isinstance(values, np.ndarray) or (isinstance(values, (list, tuple)) and values and
                                           isinstance(values[0], (list, tuple, np.ndarray))):
-        a = np.asarray(values, dtype=np.float64).reshape(-1)
+        a = as_array(name, args, what, values, np.float64).reshape(-1)
         flat = a.tolist()
     else:
         flat = flat_numbers(name, (values,), None)
@@ -134,6 +138,14 @@ def _array(name: str, args: tuple, values, n: int | None, what: str, width: int)
     if not np.all(np.isfinite(a)):
         raise GLValueError(f"{describe(name, args)}: {what} must be finite")
     return a
+
+
+def _last_geom(name: str, args: tuple):
+    """The geometry of ``crvn(geom)`` or ``crvn(n, geom)``."""
+    if len(args) not in (1, 2):
+        raise GLTypeError(f"{describe(name, args)}: expected 1 or 2 arguments (geom, or "
+                          f"n and geom), got {len(args)}")
+    return args[-1]
 
 
 def _basis(name: str, args: tuple, bid: int) -> np.ndarray:
@@ -218,7 +230,7 @@ def crv(*args) -> None:
 def crvn(*args) -> None:
     """crvn(geom): segments through n points (3n numbers; n implied, as the binding
     did) (crvn(3G)); ``crvn(n, geom)`` is accepted too."""
-    g = args[-1]
+    g = _last_geom("crvn", args)
     arr = _array("crvn", args, g, None, "geom", 3)
     if len(args) == 2 and as_int("crvn", args, "n", args[0]) != arr.shape[0]:
         raise GLTypeError(f"{describe('crvn', args)}: n does not match the points given")
@@ -235,7 +247,7 @@ def rcrv(*args) -> None:
 @gl_function(record=False)
 def rcrvn(*args) -> None:
     """rcrvn(geom): rational segments through n homogeneous points (4n numbers)."""
-    g = args[-1]
+    g = _last_geom("rcrvn", args)
     arr = _array("rcrvn", args, g, None, "geom", 4)
     if len(args) == 2 and as_int("rcrvn", args, "n", args[0]) != arr.shape[0]:
         raise GLTypeError(f"{describe('rcrvn', args)}: n does not match the points given")
@@ -248,8 +260,9 @@ def curveit(iterations: int) -> None:
     times, drawing a line through the points (module docstring)."""
     args = (iterations,)
     n = as_int("curveit", args, "iterations", iterations)
-    if n < 0:
-        raise GLValueError(f"{describe('curveit', args)}: iterations must be >= 0")
+    if not 0 <= n <= _SHORT_MAX:  # curveit(3G) takes a short iteration count
+        raise GLValueError(f"{describe('curveit', args)}: iterations must be 0..{_SHORT_MAX} "
+                           "(a short)")
     ctx = current("curveit", args)
     rows = np.array(ctx.matrices.current(), dtype=np.float64)
     pts = [rows[0].copy()]

@@ -21,8 +21,6 @@ the run.
 
 from __future__ import annotations
 
-from weakref import WeakKeyDictionary
-
 from vgxsim import DEVICE
 from vgxsim.events import EventQueue
 
@@ -32,10 +30,6 @@ __all__ = [
     "qdevice", "unqdevice", "qread", "qtest", "qenter", "qreset", "isqueued",
     "getvaluator", "getbutton", "tie", "noise", "blkqread",
 ]
-
-# Windows whose INPUTCHANGE (focus) entry is still to come, per queue.
-_focus_pending: WeakKeyDictionary[EventQueue, int] = WeakKeyDictionary()
-
 
 def event_queue() -> EventQueue:
     """The session's event queue, created (with no scripted input) on first use."""
@@ -48,12 +42,16 @@ def window_opened(gid: int) -> None:
     """What ``winopen`` does to the queue: REDRAW now, INPUTCHANGE at the next read."""
     q = event_queue()
     q.window_opened(gid)
-    _focus_pending[q] = gid
+    session.focus_pending = (q, gid)  # INPUTCHANGE at the next read of this queue
 
 
 def _sync_focus(q: EventQueue) -> None:
-    gid = _focus_pending.pop(q, None)
-    if gid is not None and q.isqueued(DEVICE.INPUTCHANGE) and gid in session.windows:
+    pending = session.focus_pending
+    if pending is None or pending[0] is not q:
+        return
+    session.focus_pending = None
+    gid = pending[1]
+    if q.isqueued(DEVICE.INPUTCHANGE) and gid in session.windows:
         q.qenter(DEVICE.INPUTCHANGE, gid)
 
 

@@ -21,6 +21,7 @@ import numpy as np
 
 from vgxsim import GL
 from vgxsim.lighting import LightingError
+from vgxsim.tokens import Token
 
 from ._core import (
     GLTypeError,
@@ -30,6 +31,7 @@ from ._core import (
     current,
     describe,
     gl_function,
+    session,
 )
 
 __all__ = ["lmdef", "lmbind", "lmcolor"]
@@ -41,6 +43,7 @@ _TARGET_DEF = {int(GL.MATERIAL): (int(GL.DEFMATERIAL), "material", "DEFMATERIAL"
                int(GL.BACKMATERIAL): (int(GL.DEFMATERIAL), "material", "DEFMATERIAL"),
                int(GL.LMODEL): (int(GL.DEFLMODEL), "lighting model", "DEFLMODEL")}
 _SHORT_MAX = 0x7FFF
+_PLAIN_INTS = (int, Token)  # exact types lmbind's fast path takes (not bool, not numpy)
 
 
 def _reason(err: LightingError) -> str:
@@ -116,6 +119,19 @@ def lmbind(target: int, index: int) -> None:
     the back (flipped normal) with the BACKMATERIAL when one is bound, else with the
     front material (lmdef(3G)).
     """
+    ctx = session.windows.get(session.current)
+    # Fast path: a material or lighting-model token (int or GL token) and a plain int
+    # index in range, the checks below inlined; lights (which transform by the
+    # modelview) and everything else take the general path.
+    if ctx is not None and type(target) in _PLAIN_INTS and type(index) is int:
+        key = _BOUND_KEY.get(target)
+        if (key is not None and 0 <= index <= _SHORT_MAX
+                and (not index or ctx.lighting.is_defined(_TARGET_DEF[target][0], index))):
+            ctx.lighting_serial += 1  # the stream records the draw state anew
+            ctx.bound[key] = index
+            if key == "material":
+                ctx.lmcolor_set = False
+            return
     args = (target, index)
     ctx = current("lmbind", args)
     ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)

@@ -33,7 +33,9 @@ from ._core import (
     describe,
     flat_numbers,
     gl_function,
+    session,
     topic_state,
+    window_of,
 )
 
 __all__ = [
@@ -239,10 +241,19 @@ def rot(*args) -> None:
 @gl_function(record=True)
 def translate(*args) -> None:
     """translate(x, y, z): premultiply a translation."""
+    if len(args) == 3:
+        x, y, z = args
+        # Fast path: three finite floats (x - x is 0.0 only for finite x).
+        if (type(x) is float and type(y) is float and type(z) is float
+                and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
+            ctx = session.windows.get(session.current)
+            if ctx is not None:
+                ctx.matrices.translate(x, y, z)
+                return
     name = "translate"
     v = _floats(name, args, ("x", "y", "z"))
     _finite(name, args, v)
-    current(name, args).matrices.mult(T.translation(*v))
+    current(name, args).matrices.translate(*v)
 
 
 @gl_function(record=True)
@@ -266,7 +277,11 @@ def pushmatrix(*args) -> None:
     after its popmatrix; save the projection with getmatrix and restore it with
     loadmatrix instead.
     """
-    ctx = current("pushmatrix", args)
+    if args:
+        _nargs("pushmatrix", args, 0)
+    ctx = session.windows.get(session.current)
+    if ctx is None:
+        ctx = current("pushmatrix", args)
     try:
         ctx.matrices.push()
     except MatrixModeError:
@@ -280,7 +295,11 @@ def pushmatrix(*args) -> None:
 def popmatrix(*args) -> None:
     """popmatrix(): discard the top of the matrix stack; GLUsageError in MPROJECTION
     and MTEXTURE, whose matrices are not stacked (see :func:`pushmatrix`)."""
-    ctx = current("popmatrix", args)
+    if args:
+        _nargs("popmatrix", args, 0)
+    ctx = session.windows.get(session.current)
+    if ctx is None:
+        ctx = current("popmatrix", args)
     try:
         ctx.matrices.pop()
     except MatrixModeError:
@@ -381,8 +400,8 @@ def _viewing_of(name: str, args: tuple, obj) -> tuple:
 
 def _unproject(ctx, mvp, vp, sx: float, sy: float, zndc: float) -> np.ndarray:
     l, r, b, t = vp
-    x = 2.0 * (sx - getattr(ctx, "origin", (0, 0))[0] - l + 0.5) / (r - l + 1) - 1.0
-    y = 2.0 * (sy - getattr(ctx, "origin", (0, 0))[1] - b + 0.5) / (t - b + 1) - 1.0
+    x = 2.0 * (sx - window_of(ctx).origin[0] - l + 0.5) / (r - l + 1) - 1.0
+    y = 2.0 * (sy - window_of(ctx).origin[1] - b + 0.5) / (t - b + 1) - 1.0
     try:
         inv = np.linalg.inv(mvp)
     except np.linalg.LinAlgError:
@@ -452,7 +471,7 @@ def screenspace(*args) -> None:
     from ._window import scrmask, viewport
 
     ctx = current("screenspace", args)
-    ox, oy = getattr(ctx, "origin", (0, 0))
+    ox, oy = window_of(ctx).origin
     viewport(-ox, int(GL.XMAXSCREEN) - ox, -oy, int(GL.YMAXSCREEN) - oy)
     scrmask(0, ctx.width - 1, 0, ctx.height - 1)
     ortho2(-0.5, int(GL.XMAXSCREEN) + 0.5, -0.5, int(GL.YMAXSCREEN) + 0.5)

@@ -60,6 +60,7 @@ from ._core import (
     GLTypeError,
     GLUsageError,
     GLValueError,
+    as_array,
     as_float,
     as_int,
     current,
@@ -143,7 +144,8 @@ def getnurbsproperty(prop: int) -> float:
 def _knots(name: str, args: tuple, what: str, v) -> np.ndarray:
     if not isinstance(v, (list, tuple, np.ndarray)):
         raise GLTypeError(f"{describe(name, args)}: {what} must be a list of numbers")
-    k = np.array([as_float(name, args, what, x) for x in np.asarray(v).reshape(-1).tolist()])
+    k = np.array([as_float(name, args, what, x) for x in
+                  as_array(name, args, what, v).reshape(-1).tolist()])
     if k.size and (not np.all(np.isfinite(k)) or np.any(np.diff(k) < 0)):
         raise GLValueError(f"{describe(name, args)}: {what} must be finite and "
                            f"nondecreasing")

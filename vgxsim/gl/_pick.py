@@ -48,6 +48,7 @@ from ._core import (
     describe,
     gl_function,
     topic_state,
+    window_of,
 )
 from ._events import event_queue
 
@@ -188,7 +189,7 @@ def pick(*args) -> None:
     """
     st, ctx = _begin("pick", args, "pick")
     q = event_queue()
-    ox, oy = getattr(ctx, "origin", (0, 0))  # winopen sets it; bare Contexts are at 0, 0
+    ox, oy = window_of(ctx).origin  # bare Contexts are at 0, 0
     cx = q.getvaluator(DEVICE.MOUSEX) - ox
     cy = q.getvaluator(DEVICE.MOUSEY) - oy
     dx, dy = st.picksize

@@ -255,7 +255,7 @@ def getplanes() -> int:
         return 0
     if ctx.config.rgb:
         return 24
-    if getattr(ctx, "multimap", False):
+    if ctx.multimap:
         return GDESC["GD_BITS_NORM_SNG_MMAP"]
     return GDESC["GD_BITS_NORM_SNG_CMODE"]
 

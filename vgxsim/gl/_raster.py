@@ -30,6 +30,7 @@ from ._core import (
     current,
     describe,
     gl_function,
+    session,
 )
 
 __all__ = [
@@ -168,8 +169,10 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
     Enabling without stencil planes (stensize 0) is stored but has no effect: the
     manual allows stencil only where planes exist, and the kernels skip the test.
     """
-    ctx = current("stencil", (enable, ref, func, mask, fail, pass_, zpass))
-    if (enable and isinstance(enable, int) and isinstance(ref, int) and isinstance(func, int)
+    ctx = session.windows.get(session.current)
+    if ctx is None:
+        ctx = current("stencil", (enable, ref, func, mask, fail, pass_, zpass))
+    if (isinstance(enable, int) and enable and isinstance(ref, int) and isinstance(func, int)
             and isinstance(mask, int) and isinstance(fail, int) and isinstance(pass_, int)
             and isinstance(zpass, int) and 0 <= func <= 7 and 0 <= fail <= 5
             and 0 <= pass_ <= 5 and 0 <= zpass <= 5):

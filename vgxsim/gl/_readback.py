@@ -48,11 +48,13 @@ from ._core import (
     GLTypeError,
     GLUsageError,
     GLValueError,
+    as_array,
     as_int,
     current,
     describe,
     gl_function,
     session,
+    window_of,
 )
 from ._window import MAX_WINDOW_SIZE
 
@@ -79,7 +81,7 @@ def _corners(name: str, args: tuple, ordered: bool = True) -> tuple[int, int, in
 
 def _source(ctx, name: str, args: tuple, allow_z: bool = True) -> np.ndarray:
     """The plane ``readsource`` selects, as uint32 words (z as two's-complement words)."""
-    src = int(getattr(ctx, "readsource", GL.SRC_AUTO))
+    src = int(ctx.readsource)
     if src == GL.SRC_ZBUFFER:
         if not allow_z:
             raise GLUsageError(f"{describe(name, args)}: readsource(SRC_ZBUFFER) is set; "
@@ -153,7 +155,7 @@ def _words(name: str, args: tuple, data, n: int) -> np.ndarray:
         return np.frombuffer(raw, dtype="<u4", count=n).astype(np.int64)
     if isinstance(data, np.ndarray) or (isinstance(data, Sequence) and not isinstance(
             data, str)):
-        arr = np.asarray(data)
+        arr = as_array(name, args, "data", data)
         if arr.dtype.kind not in "iub":
             raise GLTypeError(f"{describe(name, args)}: pixel values must be integers, not "
                               f"{arr.dtype}")
@@ -300,11 +302,11 @@ def readRGB(n: int) -> tuple[int, list[int], list[int], list[int]]:  # noqa: N80
     if not ctx.config.rgb:
         raise GLUsageError(f"{describe('readRGB', args)}: readRGB works only in RGB mode "
                            "(call RGBmode() and gconfig() first)")
-    if not getattr(ctx, "cpos_valid", True):
+    if not ctx.cpos_valid:
         # The manual leaves reading from an undefined position undefined; nothing is
         # read and the position stays undefined.
         return 0, [], [], []
-    cpos = tuple(getattr(ctx, "cpos", (0, 0)))
+    cpos = tuple(ctx.cpos)
     x, y = int(round(float(cpos[0]))), int(round(float(cpos[1])))
     plane = _source(ctx, "readRGB", args, allow_z=False)
     h, w = plane.shape
@@ -337,7 +339,7 @@ def readdisplay(x1: int, y1: int, x2: int, y2: int, hints: int = 0) -> bytes:
     out = np.zeros((h, w), np.uint32)
     for gid in sorted(session.windows):
         ctx = session.windows[gid]
-        ox, oy = ctx.origin if hasattr(ctx, "origin") else (0, 0)
+        ox, oy = window_of(ctx).origin
         # the window's part of the rectangle, in window coordinates
         xa, xb = _clip(r[0] - ox, r[2] - ox, ctx.width)
         ya, yb = _clip(r[1] - oy, r[3] - oy, ctx.height)

@@ -55,12 +55,14 @@ from . import _events
 from ._core import (
     GLTypeError,
     GLValueError,
+    Window,
     as_int,
     check_token,
     current,
     describe,
     gl_function,
     session,
+    window_of,
 )
 from ._matrix import load_window_projection
 
@@ -81,23 +83,15 @@ ACBITS = (0, 16)  # acsize(3G) on the VGX: none or 16 bits per component (GD_BIT
 ZBITS = (0, 24)  # zbsize: none or the 24-bit z-buffer (GD_BITS_NORM_ZBUFFER)
 
 # -- window constraints (prefsize & co), used up by the next winopen ---------------------
-# They live beside session.prefsize/prefposition; the owner check drops constraints
-# left over from before a session.reset().
-_constraints: dict = {"owner": None}
-
-
+# They live in the session beside session.prefsize/prefposition.
 def _pending_constraints() -> dict:
-    if _constraints["owner"] is not session.windows:
-        _constraints.clear()
-        _constraints["owner"] = session.windows
-    return _constraints
+    return session.constraints
 
 
 def _clear_constraints() -> None:
     session.prefsize = None
     session.prefposition = None
-    _constraints.clear()
-    _constraints["owner"] = session.windows
+    session.constraints = {}
 
 
 def _positive_pair(name: str, args: tuple) -> tuple[int, int]:
@@ -173,7 +167,8 @@ def present(ctx: Context, force: bool = False) -> bool:
     if ctx.sink is None:
         return False
     img = ctx.display_rgba()
-    shown = getattr(ctx, "shown", None)
+    rec = window_of(ctx)
+    shown = rec.shown
     if isinstance(shown, str):  # "fresh": the planes as allocated (all zero)
         zero = np.zeros((1, 1), np.uint32)
         pixel = (np.zeros(4, np.uint8) if ctx.config.rgb
@@ -183,7 +178,7 @@ def present(ctx: Context, force: bool = False) -> bool:
         return False
     ctx.sink.write(img)
     ctx.frames += 1
-    ctx.shown = img
+    rec.shown = img
     return True
 
 
@@ -205,7 +200,7 @@ def _baseline(ctx: Context) -> None:
     # changes from here make frames of a single-buffered window.
     # Computed lazily in present(): fresh planes are all zero, so the screen shows
     # index/colour 0 everywhere, and a window nobody watches costs nothing here.
-    ctx.shown = "fresh" if not ctx.config.double else None
+    window_of(ctx).shown = "fresh" if not ctx.config.double else None
 
 
 # -- opening and closing ----------------------------------------------------------------
@@ -235,17 +230,13 @@ def winopen(name: str) -> int:
     _check_size("winopen", args, w, h)
     origin = session.prefposition[0::2] if session.prefposition is not None else (0, 0)
     c = dict(_pending_constraints())
-    c.pop("owner", None)
     _clear_constraints()
     ctx = Context(w, h, rgb=False, double=False, stencil=0, zbits=24, acbits=0)
     load_window_projection(ctx)  # MSINGLE with ortho2(-0.5, w-0.5, -0.5, h-0.5), greset(3G)
     gid = session.next_gid
     session.next_gid += 1
-    ctx.gid = gid
-    ctx.title = title
-    ctx.icontitle = title
-    ctx.origin = (int(origin[0]), int(origin[1]))
-    ctx.constraints = c
+    session.window_records[ctx] = Window(gid, title, title, (int(origin[0]),
+                                                            int(origin[1])), c)
     session.windows[gid] = ctx
     session.current = gid
     if session.sink_factory is not None:
@@ -278,15 +269,18 @@ def winclose(gid: int) -> None:
     ctx.flush()
     if not ctx.config.double:
         present(ctx)
-    del session.windows[ctx.gid]
-    if session.current == ctx.gid:
+    g = as_int("winclose", args, "gid", gid)
+    del session.windows[g]
+    session.window_records.pop(ctx, None)
+    if session.current == g:
         session.current = None
 
 
 @gl_function(record=False)
 def winset(gid: int) -> None:
     """Make window ``gid`` the current window (winset(3G))."""
-    session.current = _window("winset", (gid,), gid).gid
+    _window("winset", (gid,), gid)
+    session.current = as_int("winset", (gid,), "gid", gid)
 
 
 @gl_function(record=False)
@@ -299,7 +293,7 @@ def winget() -> int:
 def wintitle(name: str) -> None:
     """Set the current window's title (wintitle(3G))."""
     args = (name,)
-    current("wintitle", args).title = _string("wintitle", args, "name", name)
+    window_of(current("wintitle", args)).title = _string("wintitle", args, "name", name)
 
 
 @gl_function(record=False)
@@ -307,7 +301,7 @@ def icontitle(name: str) -> None:
     """Set the title of the current window's icon (icontitle(3G)); no icon is shown
     headless."""
     args = (name,)
-    current("icontitle", args).icontitle = _string("icontitle", args, "name", name)
+    window_of(current("icontitle", args)).icontitle = _string("icontitle", args, "name", name)
 
 
 @gl_function(record=False)
@@ -385,7 +379,7 @@ def _reshape(ctx: Context, w: int, h: int) -> bool:
     ctx.configure(replace(ctx.config, width=w, height=h))
     ctx.raster.set(**keep)
     _baseline(ctx)
-    _events.event_queue().qenter(DEVICE.REDRAW, ctx.gid)
+    _events.event_queue().qenter(DEVICE.REDRAW, session.current)  # ctx is current
     return True
 
 
@@ -397,13 +391,11 @@ def winconstraints() -> None:
     if session.prefsize is not None or session.prefposition is not None:
         if session.prefposition is not None:
             x1, x2, y1, y2 = session.prefposition
-            ctx.origin = (x1, y1)
+            window_of(ctx).origin = (x1, y1)
         w, h = _initial_size()
         _check_size("winconstraints", (), w, h)
         _reshape(ctx, w, h)
-    c = dict(_pending_constraints())
-    c.pop("owner", None)
-    ctx.constraints = c
+    window_of(ctx).constraints = dict(_pending_constraints())
     _clear_constraints()
 
 
@@ -414,7 +406,7 @@ def winposition(x1: int, x2: int, y1: int, y2: int) -> None:
     r = _rect("winposition", args)
     _check_size("winposition", args, r[1] - r[0] + 1, r[3] - r[2] + 1)
     ctx = current("winposition", args)
-    ctx.origin = (r[0], r[2])
+    window_of(ctx).origin = (r[0], r[2])
     _reshape(ctx, r[1] - r[0] + 1, r[3] - r[2] + 1)
 
 
@@ -425,7 +417,7 @@ def winmove(orgx: int, orgy: int) -> None:
     args = (orgx, orgy)
     x = as_int("winmove", args, "orgx", orgx)
     y = as_int("winmove", args, "orgy", orgy)
-    current("winmove", args).origin = (x, y)
+    window_of(current("winmove", args)).origin = (x, y)
 
 
 # -- configuration requests -------------------------------------------------------------
@@ -590,8 +582,8 @@ def getsize() -> tuple[int, int]:
 def getorigin() -> tuple[int, int]:
     """Screen position of the window's lower-left corner (getorigin(3G)); (0, 0)
     unless prefposition/winposition/winmove placed it."""
-    ctx = current("getorigin")
-    return int(ctx.origin[0]), int(ctx.origin[1])
+    origin = window_of(current("getorigin")).origin
+    return int(origin[0]), int(origin[1])
 
 
 @gl_function(record=True)

@@ -19,6 +19,14 @@ Rules from mmode(3G):
   learns at once that it must use getmatrix/loadmatrix instead of silently keeping
   the wrong matrix.
 
+Speed (issue 6: pushmatrix/translate/popmatrix under 1 us each).  ``push`` shares the
+top matrix instead of copying it: no matrix here is ever changed in place (every
+load/mult stores a new array), so the two stack entries cannot diverge through
+aliasing.  ``translate`` (:data:`DEFER_TRANSLATE`) only notes its offsets; the
+product ``translation @ current`` is formed, with exactly the numpy operations
+``mult`` would have used and in call order, when the matrix is next read or changed
+(:meth:`MatrixState._settle`), and never when a ``popmatrix`` discards it first.
+
 A new window starts in MSINGLE with the pixel-unit 2-D projection loaded
 (:meth:`reset`, called by winopen; greset(3G) "loads a 2-D orthographic projection", the
 ``ortho2(-0.5, W - 0.5, -0.5, H - 0.5)`` of subpixel(3G), as IGL does per window).
@@ -32,6 +40,17 @@ MSINGLE, MPROJECTION, MVIEWING, MTEXTURE = 0, 1, 2, 3
 STACK_DEPTH = 32  # MATRIXSTACKDEPTH (gl.h)
 _IDENTITY = np.eye(4)
 _IDENTITY.flags.writeable = False
+
+#: Fast path switch: translate() defers its matrix product until the matrix is read
+#: (False: every translate multiplies at once; the planes are the same either way).
+DEFER_TRANSLATE = True
+
+
+def _translation(x: float, y: float, z: float) -> np.ndarray:
+    """The row-vector translation matrix (geometry.transform.translation's layout)."""
+    m = np.eye(4)
+    m[3, :3] = (x, y, z)
+    return m
 
 
 class MatrixStackError(RuntimeError):
@@ -54,13 +73,36 @@ class MatrixState:
         self._saved = None
         self._mvp = None
         self._mv_inv_t = None
+        self._pending: list | None = None  # deferred translate() offsets, in call order
 
     def _touch(self) -> None:
         self._mvp = None
         self._mv_inv_t = None
 
+    def _settle(self) -> None:
+        """Apply the deferred translations to the current matrix, as mult would have."""
+        pending = self._pending
+        if pending is not None:
+            self._pending = None
+            for x, y, z in pending:
+                self.mult(_translation(x, y, z))
+
+    def translate(self, x: float, y: float, z: float) -> None:
+        """``mult(translation(x, y, z))``, deferred (see the module docstring)."""
+        if not DEFER_TRANSLATE or self.pick is not None:
+            self.mult(_translation(x, y, z))
+            return
+        if self._pending is None:
+            self._pending = [(x, y, z)]
+        else:
+            self._pending.append((x, y, z))
+        self._mvp = None
+        self._mv_inv_t = None
+
     # current matrix of the active mode
     def current(self) -> np.ndarray:
+        if self._pending is not None:
+            self._settle()
         if self.mode == MPROJECTION:
             return self.projection
         if self.mode == MTEXTURE:
@@ -73,6 +115,8 @@ class MatrixState:
         return m if self.pick is None else m @ self.pick
 
     def load(self, m: np.ndarray) -> None:
+        if self._pending is not None:
+            self._settle()
         m = np.array(m, dtype=np.float64).reshape(4, 4)
         if self.mode in (MSINGLE, MPROJECTION):
             m = self._picked(m)
@@ -91,6 +135,8 @@ class MatrixState:
     def load_projection(self, m: np.ndarray) -> None:
         """perspective/window/ortho/ortho2: in MSINGLE they load the single matrix,
         otherwise the projection matrix."""
+        if self._pending is not None:
+            self._settle()
         m = self._picked(np.array(m, dtype=np.float64))
         if self.mode == MSINGLE:
             self.modelview[-1] = m
@@ -103,6 +149,7 @@ class MatrixState:
         ends in clip space (the single matrices, or the projection) is composed with
         ``pick``, and so is every projection loaded until :meth:`end_pick`, which
         restores the matrices as they were at pick()."""
+        self._settle()
         self._saved = (self.mode, [m.copy() for m in self.modelview],
                        self.projection.copy(), self.texture.copy())
         self.pick = np.array(pick, dtype=np.float64).reshape(4, 4)
@@ -114,6 +161,7 @@ class MatrixState:
 
     def end_pick(self) -> None:
         """endpick: the matrices as they were before pick()."""
+        self._settle()
         if self._saved is not None:
             self.mode, self.modelview, self.projection, self.texture = self._saved
         self._saved = None
@@ -124,6 +172,7 @@ class MatrixState:
         """MSINGLE with empty stacks and ``single`` (default identity) as the single
         matrix; every other matrix the identity.  A new window passes its
         ``ortho2(-0.5, W - 0.5, -0.5, H - 0.5)`` (greset(3G), subpixel(3G))."""
+        self._pending = None  # every matrix is replaced
         self.mode = MSINGLE
         self.modelview = [np.eye(4) if single is None else
                           np.array(single, dtype=np.float64).reshape(4, 4)]
@@ -137,7 +186,10 @@ class MatrixState:
                                   "(mmode(3G))")
         if len(self.modelview) >= STACK_DEPTH:
             raise MatrixStackError("matrix stack overflow (MATRIXSTACKDEPTH 32)")
-        self.modelview.append(self.modelview[-1].copy())
+        if self._pending is not None:
+            self._settle()
+        # Shared, not copied: matrices are never changed in place (module docstring).
+        self.modelview.append(self.modelview[-1])
         self._touch()
 
     def pop(self) -> None:
@@ -146,12 +198,14 @@ class MatrixState:
                                   "(mmode(3G))")
         if len(self.modelview) <= 1:
             raise MatrixStackError("matrix stack underflow")
+        self._pending = None  # translations of the discarded top
         self.modelview.pop()
         self._touch()
 
     def set_mode(self, mode: int) -> None:
         """mmode(mode): entering or leaving MSINGLE empties the stacks and makes every
         matrix the identity (mmode(3G)); other switches keep all matrices."""
+        self._settle()
         if (mode == MSINGLE) != (self.mode == MSINGLE):
             base = self._picked(np.eye(4))  # while picking the pick matrix underlies all
             self.modelview = [base.copy() if mode == MSINGLE else np.eye(4)]
@@ -161,6 +215,8 @@ class MatrixState:
         self._touch()
 
     def modelview_matrix(self) -> np.ndarray:
+        if self._pending is not None:
+            self._settle()
         if self.mode == MSINGLE:
             return _IDENTITY  # one shared read-only object: callers compare by identity
         return self.modelview[-1]
@@ -168,6 +224,8 @@ class MatrixState:
     def mvp(self) -> np.ndarray:
         """Object -> clip transform (derived once per change)."""
         if self._mvp is None:
+            if self._pending is not None:
+                self._settle()
             if self.mode == MSINGLE:
                 self._mvp = self.modelview[-1].copy()
             else:
