@@ -10,7 +10,7 @@ worker threads of vgxsim/threads.py run them side by side (the kernels release t
 GIL).
 
 Bit-identical with the unfused path: every value is computed by the same routines in
-the same order -- :func:`~.transform.transform_points`, :func:`~.clip.outcodes`,
+the same order -- the row order of :func:`~.transform.transform_points`, :func:`~.clip.outcodes`,
 :func:`~.clip.project_snap`, :func:`~.clip.clip_triangles` (called on the one
 triangle that needs clipping, which is the rare case: the guard band keeps x and y
 clipping away) and the set-up of :mod:`.setup` -- all of them per vertex or per
@@ -29,7 +29,6 @@ import numpy as np
 from .clip import MAX_POLY, clip_triangles, outcodes, project_snap
 from .options import jit
 from .setup import _dead, _setup_one
-from .transform import transform_points
 
 HUGE = 1e300  # clip coordinates beyond this are rescaled (vgxsim.geometry.pipeline._tame)
 CLIP_SLOTS = MAX_POLY - 2  # set-up records reserved for a triangle that needs clipping
@@ -55,22 +54,25 @@ def front_vertices(obj, mvp, gx, gy, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpix
         Outputs, written in rows ``v0 .. v1 - 1``.
     v0, v1 : int
     """
-    c = transform_points(obj[v0:v1], mvp)
-    for i in range(c.shape[0]):
-        # A vertex with a component beyond HUGE (but all finite) is the same point
-        # divided by its largest magnitude (geometry.pipeline._tame, row by row).
+    for i in range(v0, v1):
+        # transform_points' order: ((p0*m0j + p1*m1j) + p2*m2j) + p3*m3j.
+        p0, p1, p2, p3 = obj[i, 0], obj[i, 1], obj[i, 2], obj[i, 3]
         big = 0.0
         finite = True
         for q in range(4):
-            a = abs(c[i, q])
+            v = ((p0 * mvp[0, q] + p1 * mvp[1, q]) + p2 * mvp[2, q]) + p3 * mvp[3, q]
+            clip_v[i, q] = v
+            a = abs(v)
             if not np.isfinite(a):
                 finite = False
             elif a > big:
                 big = a
         if finite and big > HUGE:
+            # The same point divided by its largest magnitude (geometry.pipeline._tame,
+            # row by row): keeps the clipper's plane distances finite.
             for q in range(4):
-                c[i, q] = c[i, q] / big
-    clip_v[v0:v1] = c
+                clip_v[i, q] = clip_v[i, q] / big
+    c = clip_v[v0:v1]
     code[v0:v1] = outcodes(c, gx, gy)
     x, y, z = project_snap(c, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
     xf[v0:v1] = x
@@ -137,8 +139,9 @@ def front_triangles(clip_v, code, xf, yf, zw, attr, tris, slots, flat_col, state
     """
     k = attr.shape[1]
     kc = min(k, 4)
-    # What one set-up reads: the triangle's three vertices, or a clipped triangle's
-    # vertices and fan (clip_triangles' output: the three inputs, then the new ones).
+    ids = np.arange(t1, dtype=np.int64)  # src of each triangle: itself (flat_col row)
+    # What a clipped triangle's set-up reads: clip_triangles' output (the three
+    # inputs, then the new vertices) and its fan.
     nloc = 3 + MAX_POLY
     lx = np.zeros(nloc, dtype=np.int64)
     ly = np.zeros(nloc, dtype=np.int64)
@@ -156,29 +159,24 @@ def front_triangles(clip_v, code, xf, yf, zw, attr, tris, slots, flat_col, state
         if used == 0:
             continue  # outside a clip plane: no record, as clip_triangles drops it
         if used == 1:
-            for j in range(3):
-                i = tris[t, j]
-                lx[j] = xf[i]
-                ly[j] = yf[i]
-                lz[j] = zw[i]
-                for q in range(kc):
-                    lcol[j, q] = attr[i, q]
-            fan = one
-        else:
-            for j in range(3):
-                i = tris[t, j]
-                for q in range(4):
-                    v3[j, q] = clip_v[i, q]
-                for q in range(k):
-                    a3[j, q] = attr[i, q]
-            cv, ca, fan, _src = clip_triangles(v3, a3, one, gx, gy)
-            px, py, pz = project_snap(cv, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
-            for i in range(cv.shape[0]):
-                lx[i] = px[i]
-                ly[i] = py[i]
-                lz[i] = pz[i]
-                for q in range(kc):
-                    lcol[i, q] = ca[i, q]
+            # Inside every plane: set up straight from the call's vertices.
+            _setup_one(xf, yf, zw, attr, tris, ids, flat_col, states[t], culls[t], flat,
+                       want_colour, t_edge, t_box, t_z, t_zlim, t_col, t_state, t, n)
+            continue
+        for j in range(3):
+            i = tris[t, j]
+            for q in range(4):
+                v3[j, q] = clip_v[i, q]
+            for q in range(k):
+                a3[j, q] = attr[i, q]
+        cv, ca, fan, _src = clip_triangles(v3, a3, one, gx, gy)
+        px, py, pz = project_snap(cv, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
+        for i in range(cv.shape[0]):
+            lx[i] = px[i]
+            ly[i] = py[i]
+            lz[i] = pz[i]
+            for q in range(kc):
+                lcol[i, q] = ca[i, q]
         m = fan.shape[0]
         for f in range(m):
             lsrc[f] = t
