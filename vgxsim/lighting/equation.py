@@ -276,6 +276,56 @@ def shade(
         if back_material is not None and back.any():
             mat = _select(back, mat, _material_arrays(back_material, n_vert, None))
 
+    return _light_vertices(p, nrm, mat, lights, lmodel)
+
+
+def shade_runs(
+    positions_eye: np.ndarray,
+    normals_eye: np.ndarray,
+    materials: Sequence[Material],
+    counts: Sequence[int],
+    lights: Sequence[LightEntry],
+    lmodel: LightModel,
+) -> np.ndarray:
+    """:func:`shade` for consecutive runs of vertices, each with its own front
+    material, under the same lights and one-sided lighting model, in one pass.
+
+    The colours are those :func:`shade` gives each run on its own (the equation is
+    evaluated vertex by vertex; only the material terms become per-vertex arrays).
+
+    Parameters
+    ----------
+    positions_eye, normals_eye : ndarray, shape (N, 3), float64
+    materials : sequence of Material
+        One per run.
+    counts : sequence of int
+        Vertices in each run (summing to N).
+    lights, lmodel
+        As for :func:`shade`; ``lmodel.twoside`` must be off.
+
+    Returns
+    -------
+    ndarray, shape (N, 4), float64
+    """
+    p = _as_points(positions_eye, "positions_eye")
+    nrm = _normalize(_as_points(normals_eye, "normals_eye"))
+    if lmodel.twoside:
+        raise LightingError("shade_runs: two-sided lighting is lit per run (shade)")
+    reps = np.asarray(counts, dtype=np.int64)
+    if reps.shape != (len(materials),) or (int(reps.sum()) != p.shape[0]
+                                                  or nrm.shape[0] != p.shape[0]):
+        raise LightingError(f"shade_runs: {len(materials)} materials, counts {reps.tolist()} "
+                            f"for {p.shape[0]} positions and {nrm.shape[0]} normals")
+    terms = {name: np.repeat(np.array([getattr(m, name) for m in materials], np.float64),
+                             reps, axis=0)
+             for name in _MatArrays._fields}
+    return _light_vertices(p, nrm, _MatArrays(**terms), lights, lmodel)
+
+
+def _light_vertices(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
+                    lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
+    """The lighting equation for (N, 3) eye positions and unit normals."""
+    n_vert = p.shape[0]
     rgb = mat.emission + mat.ambient * np.asarray(lmodel.ambient, dtype=np.float64)
 
     if lmodel.local_viewer:

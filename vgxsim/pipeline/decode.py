@@ -103,6 +103,10 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
     starts = np.flatnonzero(brk).tolist()
     ends = starts[1:] + [npr]
     rows = prims.tolist()
+    # Drawn in order below; collected first so that lighting runs once over the lit
+    # groups that share lights (draw.shade_groups).
+    jobs: list = []
+    lit_groups: list = []
     for a, b in zip(starts, ends, strict=True):
         kind, v0, v1, si, lms = rows[a][0], rows[a][1], rows[b - 1][2], rows[a][3], rows[a][4]
         if v1 == v0:
@@ -113,8 +117,8 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
         if not tri[a]:
             # Lines and points: one primitive per group (the line-style pattern
             # restarts at every bgnline).
-            draw_arrays(ctx, state, bool(lms), NAME_OF[kind], pos[sl], col[sl], nrm[sl], lit,
-                        private=True)
+            jobs.append((draw_arrays, (ctx, state, bool(lms), NAME_OF[kind], pos[sl], col[sl],
+                                       nrm[sl], lit), {"private": True}))
             continue
         if state.concave or b - a == 1:
             for r in rows[a:b]:
@@ -123,9 +127,9 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
                 ps = slice(r[1], r[2])
                 st = records[r[3]]
                 name = "polygon" if r[0] in (POLYGON, PMV) else NAME_OF[r[0]]
-                draw_arrays(ctx, st, bool(lms), name, pos[ps], col[ps], nrm[ps],
-                            _lit(st, sent[ps]), swaps=swaps[r[5]:r[6]].tolist(),
-                            private=True)
+                jobs.append((draw_arrays, (ctx, st, bool(lms), name, pos[ps], col[ps], nrm[ps],
+                                           _lit(st, sent[ps])),
+                             {"swaps": swaps[r[5]:r[6]].tolist(), "private": True}))
             continue
         tris, prov, tri_prim = _group_triangles(rows[a:b], v0, swaps)
         tri_states = None
@@ -134,8 +138,18 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
             tri_states = (recs, tri_prim)  # one entry per primitive of the group
         normals = nrm[sl] if state.lighting is not None else None
         cols = col[sl] if _wants_colour(state) else None
-        defer_triangles(ctx, state, bool(lms), pos[sl], cols, normals,
-                        lit if normals is not None else None, tris, prov, tri_states)
+        lit = lit if normals is not None else None
+        kw = {}
+        if draw.BATCH_LIGHTING and cols is not None and normals is not None:
+            kw = {"lit_rgba": len(lit_groups)}  # filled in once all groups are known
+            lit_groups.append((state, bool(lms), pos[sl], normals, cols, lit))
+        jobs.append((defer_triangles, (ctx, state, bool(lms), pos[sl], cols, normals, lit,
+                                       tris, prov, tri_states), kw))
+    shaded = draw.shade_groups(lit_groups) if len(lit_groups) > 1 else [None] * len(lit_groups)
+    for fn, args, kw in jobs:
+        if "lit_rgba" in kw:
+            kw = {"lit_rgba": shaded[kw["lit_rgba"]]}
+        fn(*args, **kw)
 
 
 def _wants_colour(state) -> bool:
