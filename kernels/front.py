@@ -1,25 +1,26 @@
-"""The fused geometry front end: transform, clip, project, snap and set-up per chunk.
+"""The fused geometry front end: transform, clip, project and snap per chunk of
+vertices, then set-up per chunk of triangles, both on the worker threads.
 
-The unfused path (vgxsim/geometry/pipeline.py with ``FUSED_FRONT`` off) runs each
-stage over the whole triangle list and hands full-size arrays from one to the next;
-for many small triangles those arrays, not the arithmetic, cost the time.  Here a
-chunk of vertices goes object -> clip -> outcode -> window -> fixed point in one pass
-(:func:`front_vertices`), and a chunk of triangles is set up straight from those
-vertices (:func:`front_triangles`); chunks of either kind are independent, so the
-worker threads of vgxsim/threads.py run them side by side (the kernels release the
-GIL).
+The stage-by-stage path (vgxsim/geometry/pipeline.py with ``FUSED_FRONT`` off) runs
+each stage over the whole list and hands full-size arrays from one to the next, on
+one thread up to set-up.  Here a chunk of vertices goes object -> clip -> outcode ->
+window -> fixed point in one pass (:func:`front_vertices`); the triangles then go
+straight to :func:`~.setup.setup_triangles_states` in chunks (the kernels release
+the GIL, vgxsim/threads.py runs the chunks side by side).  Only when a triangle
+needs clipping (rare: the guard band keeps x and y clipping away) or is rejected does
+a serial step (:func:`front_assemble`) build the list set-up reads.
 
-Bit-identical with the unfused path: every value is computed by the same routines in
-the same order -- the row order of :func:`~.transform.transform_points`, :func:`~.clip.outcodes`,
-:func:`~.clip.project_snap`, :func:`~.clip.clip_triangles` (called on the one
-triangle that needs clipping, which is the rare case: the guard band keeps x and y
-clipping away) and the set-up of :mod:`.setup` -- all of them per vertex or per
-triangle with a row-independent rounding order (docs/numeric_model.md s. 4).
+Bit-identical with the stage-by-stage path: every value comes from the same
+arithmetic in the same order -- the row order of :func:`~.transform.transform_points`,
+:func:`~.clip.outcodes`, :func:`~.clip.project_snap`, :func:`~.clip.clip_triangles`
+(called on the one triangle being clipped) and set-up itself -- each per vertex or
+per triangle with a row-independent rounding order (docs/numeric_model.md s. 4).
+Set-up is the existing kernel, so a cold start compiles little that is new.
 
-Slots: triangle ``t`` owns the set-up records ``slots[t] .. slots[t + 1] - 1`` (one
-for a triangle inside every plane, none for one outside a plane, ``MAX_POLY - 2``
-for one that needs clipping, the fan's unused ones dead), so chunks know where to
-write before any of them has run and the drawing order is the input order.
+Records: triangle ``t`` owns the set-up records ``slots[t] .. slots[t + 1] - 1`` (one
+for a triangle inside every plane, none for one outside a plane, ``CLIP_SLOTS`` for
+one that needs clipping, the unused ones dead), so chunks know where to write before
+any of them has run, and the drawing order is the input order.
 """
 
 from __future__ import annotations
@@ -28,7 +29,6 @@ import numpy as np
 
 from .clip import MAX_POLY, clip_triangles, outcodes, project_snap
 from .options import jit
-from .setup import _dead, _setup_one
 
 HUGE = 1e300  # clip coordinates beyond this are rescaled (vgxsim.geometry.pipeline._tame)
 CLIP_SLOTS = MAX_POLY - 2  # set-up records reserved for a triangle that needs clipping
@@ -110,77 +110,83 @@ def front_slots(code, tris):
 
 
 @jit
-def front_triangles(clip_v, code, xf, yf, zw, attr, tris, slots, flat_col, states, culls,
-                    flat, want_colour, gx, gy, vp_l, vp_r, vp_b, vp_t, znear, zfar,
-                    subpixel, t_edge, t_box, t_z, t_zlim, t_col, t_state, offset, t0, t1):
-    """Set up triangles ``t0 .. t1 - 1`` into the records ``offset + slots[t]``.
+def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, vp_l, vp_r, vp_b,
+                   vp_t, znear, zfar, subpixel):
+    """The triangles set-up reads, one per record (see the module docstring), when
+    some triangle is clipped or rejected: the clipped ones' vertices appended.
 
     Parameters
     ----------
     clip_v, code, xf, yf, zw : ndarray
-        The vertices after :func:`front_vertices`.
+        The vertices after :func:`front_vertices`, shapes (Nv, 4), (Nv,).
     attr : ndarray, shape (Nv, K), float64
         Vertex colour in [0, 1] (K = 4), or K = 0 when colour is not written.
     tris : ndarray, shape (Nt, 3), int64
     slots : ndarray, shape (Nt + 1,), int64
         From :func:`front_slots`.
-    flat_col : ndarray, shape (Nt, 4) or (1, 4), float64
-        Per input triangle, its flat-shading colour.
-    states, culls : ndarray, shape (Nt,), int64
-        State-table index and cull mode of each triangle.
-    flat, want_colour : bool
     gx, gy, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel
-        As for :func:`front_vertices` (for the vertices clipping creates).
-    t_edge, t_box, t_z, t_zlim, t_col, t_state : ndarray
-        The batch's set-up records (:func:`~.setup.setup_triangles`).
-    offset : int
-        The call's first record.
-    t0, t1 : int
+        As for :func:`front_vertices`.
+
+    Returns
+    -------
+    xf, yf, zw, attr : ndarray
+        The vertices with those clipping made appended.
+    rec_tris : ndarray, shape (slots[Nt], 3), int64
+        Per record, its triangle; a clipped triangle's unused records get the
+        degenerate (0, 0, 0), which set-up makes a dead record (zero area).
+    rec_src : ndarray, shape (slots[Nt],), int64
+        Per record, its input triangle.
     """
+    nt = tris.shape[0]
+    nv = xf.shape[0]
     k = attr.shape[1]
-    kc = min(k, 4)
-    ids = np.arange(t1, dtype=np.int64)  # src of each triangle: itself (flat_col row)
-    # What a clipped triangle's set-up reads: clip_triangles' output (the three
-    # inputs, then the new vertices) and its fan.
-    nloc = 3 + MAX_POLY
-    lx = np.zeros(nloc, dtype=np.int64)
-    ly = np.zeros(nloc, dtype=np.int64)
-    lz = np.zeros(nloc, dtype=np.float64)
-    lcol = np.zeros((nloc, 4), dtype=np.float64)
-    lsrc = np.zeros(MAX_POLY, dtype=np.int64)
+    nrec = slots[nt]
+    nclip = 0
+    for t in range(nt):
+        if slots[t + 1] - slots[t] > 1:
+            nclip += 1
+    cap = nv + nclip * (3 + MAX_POLY)
+    oxf = np.empty(cap, dtype=np.int64)
+    oyf = np.empty(cap, dtype=np.int64)
+    ozw = np.empty(cap, dtype=np.float64)
+    oattr = np.empty((cap, k), dtype=np.float64)
+    oxf[:nv] = xf
+    oyf[:nv] = yf
+    ozw[:nv] = zw
+    oattr[:nv] = attr
+    rec_tris = np.zeros((nrec, 3), dtype=np.int64)
+    rec_src = np.empty(nrec, dtype=np.int64)
     v3 = np.empty((3, 4), dtype=np.float64)
     a3 = np.empty((3, k), dtype=np.float64)
     one = np.zeros((1, 3), dtype=np.int64)
     one[0, 1] = 1
     one[0, 2] = 2
-    for t in range(t0, t1):
-        n = offset + slots[t]
-        used = slots[t + 1] - slots[t]
-        if used == 0:
-            continue  # outside a clip plane: no record, as clip_triangles drops it
+    top = nv
+    for t in range(nt):
+        n = slots[t]
+        used = slots[t + 1] - n
+        for f in range(used):
+            rec_src[n + f] = t
         if used == 1:
-            # Inside every plane: set up straight from the call's vertices.
-            _setup_one(xf, yf, zw, attr, tris, ids, flat_col, states[t], culls[t], flat,
-                       want_colour, t_edge, t_box, t_z, t_zlim, t_col, t_state, t, n)
-            continue
-        for j in range(3):
-            i = tris[t, j]
-            for q in range(4):
-                v3[j, q] = clip_v[i, q]
-            for q in range(k):
-                a3[j, q] = attr[i, q]
-        cv, ca, fan, _src = clip_triangles(v3, a3, one, gx, gy)
-        px, py, pz = project_snap(cv, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
-        for i in range(cv.shape[0]):
-            lx[i] = px[i]
-            ly[i] = py[i]
-            lz[i] = pz[i]
-            for q in range(kc):
-                lcol[i, q] = ca[i, q]
-        m = fan.shape[0]
-        for f in range(m):
-            lsrc[f] = t
-            _setup_one(lx, ly, lz, lcol, fan, lsrc, flat_col, states[t], culls[t], flat,
-                       want_colour, t_edge, t_box, t_z, t_zlim, t_col, t_state, f, n + f)
-        for f in range(m, used):
-            _dead(t_box, t_state, n + f, states[t])
+            for j in range(3):
+                rec_tris[n, j] = tris[t, j]
+        elif used > 1:
+            for j in range(3):
+                i = tris[t, j]
+                for q in range(4):
+                    v3[j, q] = clip_v[i, q]
+                for q in range(k):
+                    a3[j, q] = attr[i, q]
+            cv, ca, fan, _src = clip_triangles(v3, a3, one, gx, gy)
+            px, py, pz = project_snap(cv, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
+            for i in range(cv.shape[0]):
+                oxf[top + i] = px[i]
+                oyf[top + i] = py[i]
+                ozw[top + i] = pz[i]
+                for q in range(k):
+                    oattr[top + i, q] = ca[i, q]
+            for f in range(fan.shape[0]):
+                for j in range(3):
+                    rec_tris[n + f, j] = top + fan[f, j]
+            top += cv.shape[0]
+    return oxf[:top], oyf[:top], ozw[:top], oattr[:top], rec_tris, rec_src

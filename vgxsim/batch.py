@@ -14,7 +14,7 @@ import numpy as np
 
 from vgxsim import coldstart, threads
 from vgxsim.kernels.clip import snap_window
-from vgxsim.kernels.front import front_slots, front_triangles, front_vertices
+from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
 from vgxsim.kernels.render import bin_primitives, render_bands
 from vgxsim.kernels.setup import setup_triangles, setup_triangles_states
 from vgxsim.state.codes import (
@@ -380,11 +380,20 @@ class CommandBatch:
         zw = np.empty(nv, np.float64)
         nthreads = threads.get_threads()
         par = nthreads > 1 and nt >= PARALLEL_FRONT
-        vcuts = _cuts(nv, nthreads if par else 1)
-        _run_chunks(par, nthreads, front_vertices, vcuts, obj, mvp, gx, gy, l, r, b, t,
-                    znear, zfar, sub, clip_v, code, xf, yf, zw)
+        _run_chunks(par, nthreads, front_vertices, _cuts(nv, nthreads if par else 1), obj, mvp,
+                    gx, gy, l, r, b, t, znear, zfar, sub, clip_v, code, xf, yf, zw)
         slots = front_slots(code, tris)
         used = int(slots[nt])
+        if used == nt and not (slots[1:] - slots[:-1] - 1).any():
+            rec_tris, rec_src = tris, None  # the usual case: one record per triangle
+        else:
+            xf, yf, zw, attrv, rec_tris, rec_src = front_assemble(
+                clip_v, code, xf, yf, zw, attrv, tris, slots, gx, gy, l, r, b, t, znear, zfar,
+                sub)
+            idx = np.ascontiguousarray(idx[rec_src])
+            culls = np.ascontiguousarray(culls[rec_src])
+        src = np.arange(used, dtype=np.int64) if rec_src is None else rec_src
+        colv = attrv if attr is not None else np.zeros((1, 4))
         start = self.ntris
         end = start + used
         self.t_edge = _grow(self.t_edge, end)
@@ -394,9 +403,18 @@ class CommandBatch:
         self.t_col = _grow(self.t_col, end)
         self.t_state = _grow(self.t_state, end)
         out = (self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state)
-        _run_chunks(par, nthreads, front_triangles, _cuts(nt, nthreads if par else 1),
-                    clip_v, code, xf, yf, zw, attrv, tris, slots, flatv, idx, culls, flat,
-                    want_colour, gx, gy, l, r, b, t, znear, zfar, sub, *out, start)
+        cuts = _cuts(used, nthreads if par else 1)
+        if len(cuts) <= 1:
+            setup_triangles_states(xf, yf, zw, colv, rec_tris, src, flatv, idx, culls, flat,
+                                   want_colour, *out, start)
+        else:
+            # Every record owns its slot, so chunks set up in parallel, order unchanged.
+            pool = threads.pool(nthreads)
+            futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, rec_tris[a:b],
+                                   src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
+                                   *out, start + a) for a, b in cuts]
+            for f in futures:
+                f.result()
         self.ntris = end
         refs = np.arange(start, end, dtype=np.int64)
         box = self.t_box[start:end]
