@@ -30,7 +30,7 @@ import time
 import numpy as np
 import trimesh
 
-from vgxsim.kernels.raycast import closest_hits, no_window, shadow_segments
+from vgxsim.kernels.raycast import closest_hits, shadow_segments
 from vgxsim.shadow import (
     Camera,
     PointLight,
@@ -42,6 +42,7 @@ from vgxsim.shadow import (
 from vgxsim.shadow.raycast import (
     homogeneous,
     light_position,
+    no_window,
     pixel_rays,
     raycast,
     run_bands,

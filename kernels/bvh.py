@@ -490,23 +490,3 @@ def _grow_box(a, size):
     out = np.empty((size, 3))
     out[:a.shape[0]] = a
     return out
-
-
-def build_bvh(tris: np.ndarray, usable: np.ndarray | None = None, *, leaf_size: int = 4,
-              sah: bool = True, max_extent: float = 0.0,
-              region: tuple[np.ndarray, np.ndarray] | None = None,
-              max_pieces: int = 64) -> BVH:
-    """Build a :data:`BVH` over the usable triangles (see :func:`build_arrays`).
-
-    ``max_extent`` > 0 cuts long triangles into pieces inside ``region`` (default:
-    everywhere), see :func:`split_references`.
-    """
-    tris = np.ascontiguousarray(tris, dtype=np.float64)
-    if usable is None:
-        usable = np.ones(tris.shape[0], dtype=np.bool_)
-    if region is None:
-        region = (np.full(3, -np.inf), np.full(3, np.inf))
-    ref, lo, hi = split_references(tris, np.ascontiguousarray(usable, dtype=np.bool_),
-                                   float(max_extent), np.asarray(region[0], np.float64),
-                                   np.asarray(region[1], np.float64), int(max_pieces))
-    return BVH(*build_arrays(tris, ref, lo, hi, int(leaf_size), bool(sah)))

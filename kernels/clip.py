@@ -5,7 +5,10 @@ extrusion to infinity, and primitives crossing w = 0 are handled) against:
 
 * the near and far planes ``-w <= z <= w`` (which also imply ``w >= 0``);
 * a guard band ``|x| <= gx*w``, ``|y| <= gy*w`` far outside the viewport, chosen by
-  the caller so that snapped fixed-point coordinates stay below 2**24.
+  the caller so that snapped fixed-point coordinates stay below 2**24;
+* up to six user clip planes (clipplane(3G)), given in clip space as rows
+  ``(a, b, c, d)`` keeping ``a*x + b*y + c*z + d*w >= 0`` (an empty (0, 4) array
+  when none is on).
 
 Pixels outside the viewport are removed later by the raster rectangle (scissor), so
 x/y clipping rarely creates vertices and edges keep their exact direction.
@@ -27,8 +30,25 @@ ONE = 1 << SUBPIXEL_BITS
 # Window coordinates are clamped to +-COORD_LIMIT pixels (the guard band keeps real
 # geometry far inside): fixed values stay below 2**24 and edge products below 2**50.
 COORD_LIMIT = 1 << 16
-MAX_POLY = 12  # 3 vertices + at most one more per clip plane (6), with slack
+MAX_POLY = 16  # 3 vertices + at most one more per clip plane (6 + 6 user), with slack
 N_PLANES = 6
+ORIGIN_BIT = 1 << N_PLANES  # inside every plane with w = 0: the clip-space origin
+NONFINITE = 0xFFFF  # outcode of a vertex with a non-finite coordinate
+NO_PLANES = np.zeros((0, 4))  # no user clip plane
+
+
+@inline
+def _plane_bit(p):
+    """Outcode bit of plane p: frustum planes 0-5 bits 0-5, user plane j bit 7 + j."""
+    return 1 << (p if p < N_PLANES else p + 1)
+
+
+@inline
+def _plane_dist(x, y, z, w, p, gx, gy, user):
+    if p < N_PLANES:
+        return _dist(x, y, z, w, p, gx, gy)
+    j = p - N_PLANES
+    return user[j, 0] * x + user[j, 1] * y + user[j, 2] * z + user[j, 3] * w
 
 
 @inline
@@ -47,8 +67,9 @@ def _dist(x, y, z, w, plane, gx, gy):
 
 
 @jit
-def outcodes(v, gx, gy):
-    """Bit p set when a vertex is outside clip plane p (or not finite).
+def outcodes(v, gx, gy, user):
+    """Bit set when a vertex is outside a clip plane (:func:`_plane_bit`), or
+    NONFINITE.
 
     Parameters
     ----------
@@ -56,33 +77,35 @@ def outcodes(v, gx, gy):
         Clip-space positions.
     gx, gy : float
         Guard-band half extents in normalized device units.
+    user : ndarray, shape (K, 4), float64
+        User clip planes in clip space (K <= 6).
 
     Returns
     -------
-    ndarray, shape (N,), uint8
+    ndarray, shape (N,), uint16
     """
     n = v.shape[0]
-    out = np.zeros(n, dtype=np.uint8)
+    out = np.zeros(n, dtype=np.uint16)
     for i in range(n):
         x, y, z, w = v[i, 0], v[i, 1], v[i, 2], v[i, 3]
         if not (np.isfinite(x) and np.isfinite(y) and np.isfinite(z) and np.isfinite(w)):
-            out[i] = 0xFF
+            out[i] = NONFINITE
             continue
         c = 0
-        for p in range(N_PLANES):
-            if not (_dist(x, y, z, w, p, gx, gy) >= 0.0):
-                c |= 1 << p
+        for p in range(N_PLANES + user.shape[0]):
+            if not (_plane_dist(x, y, z, w, p, gx, gy, user) >= 0.0):
+                c |= _plane_bit(p)
         if c == 0 and not (w > 0.0):
             # Only the clip-space origin (the eye of a perspective projection) is inside
             # all six planes with w = 0: send it to the clipper, which drops polygons
             # touching it (they are edge-on and cover nothing).
-            c = 1 << N_PLANES
+            c = ORIGIN_BIT
         out[i] = c
     return out
 
 
 @jit
-def clip_triangles(v, attr, tris, gx, gy):
+def clip_triangles(v, attr, tris, gx, gy, user):
     """Clip triangles in homogeneous space.
 
     Parameters
@@ -95,6 +118,8 @@ def clip_triangles(v, attr, tris, gx, gy):
         Vertex indices of each triangle.
     gx, gy : float
         Guard band (see module docstring).
+    user : ndarray, shape (K, 4), float64
+        User clip planes in clip space (see module docstring).
 
     Returns
     -------
@@ -109,13 +134,13 @@ def clip_triangles(v, attr, tris, gx, gy):
     nv = v.shape[0]
     nt = tris.shape[0]
     k = attr.shape[1]
-    code = outcodes(v, gx, gy)
+    code = outcodes(v, gx, gy, user)
     # Pass 1: how many triangles need real clipping.
     nclip = 0
     for t in range(nt):
         a, b, c = tris[t, 0], tris[t, 1], tris[t, 2]
         if (code[a] | code[b] | code[c]) != 0 and (code[a] & code[b] & code[c]) == 0:
-            if code[a] == 0xFF or code[b] == 0xFF or code[c] == 0xFF:
+            if code[a] == NONFINITE or code[b] == NONFINITE or code[c] == NONFINITE:
                 continue
             nclip += 1
     if nclip == 0:
@@ -146,7 +171,7 @@ def clip_triangles(v, attr, tris, gx, gy):
             out_src[nto] = t
             nto += 1
             continue
-        if (ca & cb & cc) != 0 or ca == 0xFF or cb == 0xFF or cc == 0xFF:
+        if (ca & cb & cc) != 0 or ca == NONFINITE or cb == NONFINITE or cc == NONFINITE:
             continue
         # Sutherland-Hodgman against each plane some vertex is outside of.
         for j in range(3):
@@ -157,14 +182,16 @@ def clip_triangles(v, attr, tris, gx, gy):
                 poly[j, 4 + q] = attr[src, q]
         n = 3
         planes = ca | cb | cc
-        for p in range(N_PLANES):
-            if not (planes >> p) & 1:
+        for p in range(N_PLANES + user.shape[0]):
+            if not (planes & _plane_bit(p)):
                 continue
             m = 0
             for i in range(n):
                 i2 = (i + 1) % n
-                d1 = _dist(poly[i, 0], poly[i, 1], poly[i, 2], poly[i, 3], p, gx, gy)
-                d2 = _dist(poly[i2, 0], poly[i2, 1], poly[i2, 2], poly[i2, 3], p, gx, gy)
+                d1 = _plane_dist(poly[i, 0], poly[i, 1], poly[i, 2], poly[i, 3], p, gx, gy,
+                                 user)
+                d2 = _plane_dist(poly[i2, 0], poly[i2, 1], poly[i2, 2], poly[i2, 3], p, gx,
+                                 gy, user)
                 in1 = d1 >= 0.0
                 in2 = d2 >= 0.0
                 if in1:
@@ -292,8 +319,9 @@ def snap_window(x, y, subpixel):
 
 
 @jit
-def clip_segments(v, attr, segs, gx, gy):
-    """Clip line segments in homogeneous space (Liang-Barsky on the six planes).
+def clip_segments(v, attr, segs, gx, gy, user):
+    """Clip line segments in homogeneous space (Liang-Barsky on the six planes and
+    the user planes).
 
     Parameters
     ----------
@@ -303,6 +331,8 @@ def clip_segments(v, attr, segs, gx, gy):
         Vertex indices of each segment.
     gx, gy : float
         Guard band, as for :func:`clip_triangles`.
+    user : ndarray, shape (K, 4), float64
+        User clip planes in clip space.
 
     Returns
     -------
@@ -332,9 +362,9 @@ def clip_segments(v, attr, segs, gx, gy):
         # interpolated from the endpoint inside the plane that cuts it.
         s0 = 1.0
         t1 = 1.0
-        for p in range(N_PLANES):
-            da = _dist(v[a, 0], v[a, 1], v[a, 2], v[a, 3], p, gx, gy)
-            db = _dist(v[b, 0], v[b, 1], v[b, 2], v[b, 3], p, gx, gy)
+        for p in range(N_PLANES + user.shape[0]):
+            da = _plane_dist(v[a, 0], v[a, 1], v[a, 2], v[a, 3], p, gx, gy, user)
+            db = _plane_dist(v[b, 0], v[b, 1], v[b, 2], v[b, 3], p, gx, gy, user)
             if not (np.isfinite(da) and np.isfinite(db)):
                 ok = False
                 break

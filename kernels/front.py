@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .clip import MAX_POLY, clip_triangles, outcodes, project_snap
+from .clip import MAX_POLY, NONFINITE, clip_triangles, outcodes, project_snap
 from .options import jit
 
 HUGE = 1e300  # clip coordinates beyond this are rescaled (vgxsim.geometry.pipeline._tame)
@@ -35,7 +35,7 @@ CLIP_SLOTS = MAX_POLY - 2  # set-up records reserved for a triangle that needs c
 
 
 @jit
-def front_vertices(obj, mvp, gx, gy, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel,
+def front_vertices(obj, mvp, gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel,
                    clip_v, code, xf, yf, zw, v0, v1):
     """Vertices ``v0 .. v1 - 1``: clip position, outcode and snapped window position.
 
@@ -47,9 +47,11 @@ def front_vertices(obj, mvp, gx, gy, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpix
         Object -> clip (row vectors).
     gx, gy : float
         Guard band (:func:`~.clip.outcodes`).
+    user : ndarray, shape (K, 4), float64
+        User clip planes in clip space (clipplane(3G); (0, 4) when none is on).
     vp_l, vp_r, vp_b, vp_t : int; znear, zfar : float; subpixel : bool
         As for :func:`~.clip.project_snap`.
-    clip_v : ndarray, shape (Nv, 4), float64; code : ndarray, shape (Nv,), uint8
+    clip_v : ndarray, shape (Nv, 4), float64; code : ndarray, shape (Nv,), uint16
     xf, yf : ndarray, shape (Nv,), int64; zw : ndarray, shape (Nv,), float64
         Outputs, written in rows ``v0 .. v1 - 1``.
     v0, v1 : int
@@ -73,7 +75,7 @@ def front_vertices(obj, mvp, gx, gy, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpix
             for q in range(4):
                 clip_v[i, q] = clip_v[i, q] / big
     c = clip_v[v0:v1]
-    code[v0:v1] = outcodes(c, gx, gy)
+    code[v0:v1] = outcodes(c, gx, gy, user)
     x, y, z = project_snap(c, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
     xf[v0:v1] = x
     yf[v0:v1] = y
@@ -87,7 +89,7 @@ def front_slots(code, tris):
 
     Parameters
     ----------
-    code : ndarray, shape (Nv,), uint8
+    code : ndarray, shape (Nv,), uint16
         Outcodes (:func:`front_vertices`).
     tris : ndarray, shape (Nt, 3), int64
 
@@ -103,15 +105,15 @@ def front_slots(code, tris):
         ca, cb, cc = code[tris[t, 0]], code[tris[t, 1]], code[tris[t, 2]]
         if (ca | cb | cc) == 0:
             n += 1
-        elif (ca & cb & cc) == 0 and ca != 0xFF and cb != 0xFF and cc != 0xFF:
+        elif (ca & cb & cc) == 0 and ca != NONFINITE and cb != NONFINITE and cc != NONFINITE:
             n += CLIP_SLOTS  # the clip_triangles rule: clipped, not rejected
     slots[nt] = n
     return slots
 
 
 @jit
-def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, vp_l, vp_r, vp_b,
-                   vp_t, znear, zfar, subpixel):
+def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, user, vp_l, vp_r,
+                   vp_b, vp_t, znear, zfar, subpixel):
     """The triangles set-up reads, one per record (see the module docstring), when
     some triangle is clipped or rejected: the clipped ones' vertices appended.
 
@@ -124,7 +126,7 @@ def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, vp_l, vp
     tris : ndarray, shape (Nt, 3), int64
     slots : ndarray, shape (Nt + 1,), int64
         From :func:`front_slots`.
-    gx, gy, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel
+    gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel
         As for :func:`front_vertices`.
 
     Returns
@@ -177,7 +179,7 @@ def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, vp_l, vp
                     v3[j, q] = clip_v[i, q]
                 for q in range(k):
                     a3[j, q] = attr[i, q]
-            cv, ca, fan, _src = clip_triangles(v3, a3, one, gx, gy)
+            cv, ca, fan, _src = clip_triangles(v3, a3, one, gx, gy, user)
             px, py, pz = project_snap(cv, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
             for i in range(cv.shape[0]):
                 oxf[top + i] = px[i]

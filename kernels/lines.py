@@ -47,6 +47,24 @@ def count_line_fragments(seg_xf, seg_yf, closed, width):
 
 
 @jit
+def line_steps(seg_xf, seg_yf):
+    """Major-axis steps of each segment (N, 2) of fixed endpoints: the pixels a
+    line-style pattern advances over it (deflinestyle(3G): one bit per pixel drawn;
+    the shared vertex of two segments of a polyline is one pixel), the same count
+    :func:`line_fragments` steps through.
+
+    Returns
+    -------
+    ndarray, shape (N,), int64
+    """
+    out = np.empty(seg_xf.shape[0], np.int64)
+    for i in range(seg_xf.shape[0]):
+        out[i] = _line_count(seg_xf[i, 0], seg_yf[i, 0], seg_xf[i, 1], seg_yf[i, 1],
+                             False, 1)
+    return out
+
+
+@jit
 def line_fragments(seg_xf, seg_yf, seg_z, seg_c, pattern_start, closed, width, pattern,
                    repeat, out_xy, out_z, out_c, offset):
     """Expand line segments into fragments.

@@ -129,12 +129,6 @@ def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
 Window = namedtuple("Window", ["width", "fx", "fy", "exact"])
 
 
-def no_window() -> Window:
-    """A :data:`Window` that tests every triangle in 3-D."""
-    return Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
-                  np.zeros(0, np.bool_))
-
-
 @inline
 def _edge_covers(xi, yi, xj, yj, px, py):
     """Rasterizer edge test: E > 0, or E == 0 on an inclusive (left/bottom) edge."""
@@ -364,7 +358,7 @@ def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
     ----------
     bvh : BVH
     win : Window
-        Window-space coverage for eye rays (:func:`no_window`: none).
+        Window-space coverage for eye rays (width 0: none).
     origin, direction : ndarray, shape (R, 3), float64
         Ray ``origin + t * direction``.
     t0, t1 : float
@@ -481,7 +475,7 @@ def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end,
     bvh : BVH
         Faces of every light, numbered by the caller's face index.
     win : Window
-        Window-space coverage for eye rays (:func:`no_window`: none).
+        Window-space coverage for eye rays (width 0: none).
     face_light : ndarray, shape (F,), int64
         The light each face belongs to.
     face_weight : ndarray, shape (F,), int64

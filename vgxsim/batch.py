@@ -317,8 +317,8 @@ class CommandBatch:
         self._maybe_flush()
         return self.ntris - start
 
-    def add_object_triangles(self, obj, mvp, viewport, depth, guard, attr, tris, flat_col,
-                             states: list[RasterState], tri_state=None) -> int:
+    def add_object_triangles(self, obj, mvp, viewport, depth, guard, user_planes, attr, tris,
+                             flat_col, states: list[RasterState], tri_state=None) -> int:
         """Transform, clip, project, snap, set up and queue triangles in one fused pass
         per chunk (vgxsim/kernels/front.py), chunks spread over the worker threads.
 
@@ -336,6 +336,8 @@ class CommandBatch:
             Inclusive viewport and lsetdepth range.
         guard : tuple of 2 float
             Guard band (vgxsim.geometry.pipeline._guard).
+        user_planes : ndarray, shape (K, 4), float64
+            User clip planes in clip space (clipplane(3G)).
         attr : ndarray, shape (Nv, 4), float64 or None
             Vertex colour in [0, 1]; None when colour is not written.
         tris : ndarray, shape (Nt, 3), int64
@@ -374,22 +376,23 @@ class CommandBatch:
         gx, gy = guard
         sub = bool(rs.subpixel)
         clip_v = np.empty((nv, 4))
-        code = np.empty(nv, np.uint8)
+        code = np.empty(nv, np.uint16)
+        user = np.ascontiguousarray(user_planes, dtype=np.float64).reshape(-1, 4)
         xf = np.empty(nv, np.int64)
         yf = np.empty(nv, np.int64)
         zw = np.empty(nv, np.float64)
         nthreads = threads.get_threads()
         par = nthreads > 1 and nt >= PARALLEL_FRONT
         _run_chunks(par, nthreads, front_vertices, _cuts(nv, nthreads if par else 1), obj, mvp,
-                    gx, gy, l, r, b, t, znear, zfar, sub, clip_v, code, xf, yf, zw)
+                    gx, gy, user, l, r, b, t, znear, zfar, sub, clip_v, code, xf, yf, zw)
         slots = front_slots(code, tris)
         used = int(slots[nt])
         if used == nt and not (slots[1:] - slots[:-1] - 1).any():
             rec_tris, rec_src = tris, None  # the usual case: one record per triangle
         else:
             xf, yf, zw, attrv, rec_tris, rec_src = front_assemble(
-                clip_v, code, xf, yf, zw, attrv, tris, slots, gx, gy, l, r, b, t, znear, zfar,
-                sub)
+                clip_v, code, xf, yf, zw, attrv, tris, slots, gx, gy, user, l, r, b, t, znear,
+                zfar, sub)
             idx = np.ascontiguousarray(idx[rec_src])
             culls = np.ascontiguousarray(culls[rec_src])
         src = np.arange(used, dtype=np.int64) if rec_src is None else rec_src

@@ -11,6 +11,10 @@ the process's own.
 
 Input comes from an event script (:mod:`vgxsim.events.script`) through the session's
 event queue; frames go to sinks made by :class:`FrameRecorder` (one per window).
+With ``window`` (``vgxsim run --window``) the same seams carry a real session: the
+queue is fed by the user's input, each window's sink shows its frames in an SDL window
+before the recorder gets them, and ``dopup`` draws its menu (:mod:`vgxsim.window`,
+imported only then).
 
 Exit status, as the program's own: ``sys.exit(n)`` gives ``n``; falling off the end
 gives 0; an uncaught exception prints its traceback and gives 1; the end of the
@@ -280,6 +284,12 @@ class _RunStopper:
     def status(self) -> int:
         return self._STATUS.get(self.pending, 0)
 
+    def raise_pending(self) -> None:
+        """End the run now if a signal or the timeout asked for it (called by vgxsim
+        code that waits for the user, where the handler itself only takes a note)."""
+        if self.pending is not None and self.armed:
+            raise RunEnded(self.pending, self._STATUS[self.pending])
+
 
 def _vgxsim_dirs() -> tuple[str, ...]:
     """Folders whose code the stopper never interrupts: vgxsim and its kernels."""
@@ -348,8 +358,13 @@ def run_program(
     timeout: float | None = None,
     fps: float = 30,
     overwrite: bool = False,
+    backend: str | None = None,
+    sink_factory=None,
+    window=None,
+    record_events: str | PathLike | None = None,
 ) -> int:
-    """Run an IRIS GL Python program headless and return its exit status.
+    """Run an IRIS GL Python program headless (or in real windows) and return its exit
+    status.
 
     Parameters
     ----------
@@ -363,7 +378,9 @@ def run_program(
     frames : str, path-like, FrameSink or None
         Where frames go (see :class:`FrameRecorder`); None records nothing.
     size : (int, int), optional
-        Size of windows opened without ``prefsize``/``prefposition`` (default 640x512).
+        The size a user gives every window (default: none; windows opened without
+        ``prefsize``/``prefposition`` are 640x512): such windows open at it, the
+        others are reshaped to it at once and get REDRAW (gl/_window.py).
     max_frames : int, optional
         End the run after this many frames (for programs that never wait for input).
     timeout : float, optional
@@ -372,6 +389,20 @@ def run_program(
         Frame rate of video output.
     overwrite : bool
         Replace an earlier run's output (video file, PNG frames) instead of refusing.
+    backend : {'software', 'opengl'}, optional
+        The backend for the run's windows (default: ``VGXSIM_BACKEND``, else
+        software; see :mod:`vgxsim.backends`).
+    sink_factory : callable, optional
+        ``sink_factory(gid)`` gives window ``gid``'s sink instead of ``frames``
+        (``vgxsim compare`` captures frames with their z and stencil planes).
+    window : bool or WindowBackend, optional
+        True: each IRIS GL window is a real window, input comes from the user
+        (:mod:`vgxsim.window`, needs pygame-ce); ``frames`` then records what the
+        windows showed.  A ready :class:`vgxsim.window.backend.WindowBackend` is used
+        as it is (tests feed it synthesized input).  Not with ``events``.
+    record_events : str or path-like, optional
+        With ``window``: write the user's input as an events script that replays the
+        session headless (``events=``).
 
     Returns
     -------
@@ -390,26 +421,45 @@ def run_program(
     The process-wide gl session (:data:`vgxsim.gl._core.session`) is reset before
     and after the run: windows a caller had open are gone afterwards.
     """
+    from vgxsim import backends
     from vgxsim.gl._core import session
     from vgxsim.gl._window import present_windows
 
     path = os.fspath(program)
     if timeout is not None and not timeout > 0:
         raise ValueError(f"timeout must be a positive number of seconds, got {timeout}")
+    if window and events is not None:
+        raise ValueError("a window run takes its input from the user: give events or "
+                         "window, not both")
+    if record_events is not None and not window:
+        raise ValueError("record_events records a window session: give window=True")
     source = events if isinstance(events, EventSource) or events is None else load_script(
         events)
     recorder = FrameRecorder(frames, fps=fps, overwrite=overwrite)
+    shown = None  # the real windows (vgxsim.window) of a --window run
+    if window:  # imported only here: headless runs never load pygame
+        from vgxsim.window.backend import WindowBackend
+
+        shown = window if isinstance(window, WindowBackend) else WindowBackend(
+            record_events, overwrite=overwrite, max_frames=max_frames)
     session.reset()
     if size is not None:
         session.default_size = (int(size[0]), int(size[1]))
-    session.queue = EventQueue(source, max_frames=max_frames)
-    session.sink_factory = recorder
+        session.reshape_size = session.default_size  # prefsize'd windows are reshaped
+    if shown is None:
+        session.queue = EventQueue(source, max_frames=max_frames)
+        session.sink_factory = recorder if sink_factory is None else sink_factory
+    else:
+        shown.install(session, recorder)
+    saved_backend = backends.set_backend(backend) if backend is not None else None
     saved_argv, saved_path = sys.argv, list(sys.path)
     sys.argv = [path, *map(str, args)]
     sys.path.insert(0, os.path.dirname(os.path.abspath(path)))
     status = 0
     ended = None  # why the run was ended from outside, for the note
     stopper = _RunStopper(timeout, path)
+    if shown is not None:  # a qread waiting for the user lets signals end the run
+        shown.check_stop = stopper.raise_pending
     try:
         with stopper, gl_modules():
             try:
@@ -453,7 +503,11 @@ def run_program(
         try:
             recorder.close()
         finally:
+            if shown is not None:
+                shown.close()
             session.reset()
+            if backend is not None:
+                backends.set_backend(saved_backend)
     if recorder.errors:
         for exc in recorder.errors:
             print(f"vgxsim run: {exc}", file=sys.stderr)

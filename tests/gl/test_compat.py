@@ -122,3 +122,27 @@ def test_pushattributes_popattributes(cwin):
     gl.color(7)
     gl.popattributes()
     assert gl.getcolor() == 3
+
+
+def test_scrsubdivide_is_accepted_and_checked(gl_window):
+    from vgxsim.gl._compat import compat_state
+
+    gl_window(4, 4)
+    gl.scrsubdivide(GL.SS_DEPTH, (0.0, 50.0, 10.0))
+    assert compat_state().subdivide == (1, (0.0, 50.0, 10.0))
+    gl.scrsubdivide(GL.SS_OFF, ())
+    assert compat_state().subdivide == (0, ())
+    with pytest.raises(gl.GLValueError, match="SS_OFF or SS_DEPTH"):
+        gl.scrsubdivide(5, ())
+    with pytest.raises(gl.GLValueError, match="up to three"):
+        gl.scrsubdivide(GL.SS_DEPTH, (1.0, 2.0, 3.0, 4.0))
+
+
+def test_gl_invert4d_by_hand():
+    # translate(1, 2, 3) then scale 2 (row vectors): the inverse scales by 1/2 and
+    # translates by -(1, 2, 3) / 2.
+    m = [2.0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1]
+    assert gl.gl_invert4d(m) == [0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0,
+                                 -0.5, -1.0, -1.5, 1.0]
+    with pytest.raises(gl.GLValueError, match="singular"):
+        gl.gl_invert4d([0.0] * 16)

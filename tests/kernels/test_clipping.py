@@ -256,3 +256,31 @@ def test_clipped_mesh_is_watertight():
             if subpixel:
                 assert count.max() <= 1
             assert union.sum() > 100
+
+
+# -- user clip planes (clipplane(3G)) in the homogeneous clipper ---------------------------
+def test_user_plane_cuts_a_triangle_exactly():
+    from vgxsim.kernels.clip import clip_segments, clip_triangles
+
+    # Triangle (0,0) (1,0) (0,1) at w = 2 (so the plane must be applied to x, not x/w),
+    # plane x - 0.25 w >= 0, i.e. x/w >= 0.25: keeps the corner near (1, 0).
+    v = np.array([[0.0, 0, 0, 2], [2.0, 0, 0, 2], [0.0, 2, 0, 2]])
+    attr = np.array([[0.0], [1.0], [2.0]])
+    user = np.array([[1.0, 0.0, 0.0, -0.25]])
+    out_v, out_attr, out_tris, out_src = clip_triangles(
+        v, attr, np.array([[0, 1, 2]]), 10.0, 10.0, user)
+    poly = out_v[out_tris[0]].tolist() + out_v[out_tris[1:, 2]].tolist()
+    # By hand: edge 0->1 enters at x = 0.5 (t = 1/4 from vertex 0: attr 0.25); edge
+    # 1->2 leaves at x = 0.5 (t = 3/4 from vertex 1: y = 1.5, attr 1.75).
+    assert sorted(map(tuple, poly)) == [(0.5, 0.0, 0.0, 2.0), (0.5, 1.5, 0.0, 2.0),
+                                        (2.0, 0.0, 0.0, 2.0)]
+    assert sorted(out_attr[len(v):, 0].tolist()) == [0.25, 1.0, 1.75]
+    assert out_src.tolist() == [0]
+    # The same plane on the segment 0 -> 1 keeps 0.5 .. 2.
+    sv, sa, src, t0 = clip_segments(v, attr, np.array([[0, 1]]), 10.0, 10.0, user)
+    assert sv[0].tolist() == [[0.5, 0.0, 0.0, 2.0], [2.0, 0.0, 0.0, 2.0]]
+    assert t0.tolist() == [0.25] and sa[0, :, 0].tolist() == [0.25, 1.0]
+    # Wholly outside a second plane (y/w <= -0.5): nothing is left.
+    both = np.array([[1.0, 0.0, 0.0, -0.25], [0.0, -1.0, 0.0, -1.0]])
+    assert clip_triangles(v, attr, np.array([[0, 1, 2]]), 10.0, 10.0, both)[2].shape[0] == 0
+    assert clip_segments(v, attr, np.array([[0, 1]]), 10.0, 10.0, both)[0].shape[0] == 0

@@ -1,7 +1,8 @@
 """The fused geometry front end (kernels/front.py, ``FUSED_FRONT``) changes no plane.
 
 Random scenes are drawn through the array path with the switch on and off: triangles
-crossing the near and far planes and the guard band (clipping), vertices at w = 0
+crossing the near and far planes, the guard band and user clip planes (clipping),
+vertices at w = 0
 and non-finite ones, culling, flat and Gouraud shading, colour written or not, on one
 thread and on two with chunks small enough that every call is split; and the 1991
 shadow frame (its shadow faces change stencil() between polygons, so one pass sets
@@ -39,15 +40,17 @@ def _scene(rng):
                  backface=bool(rng.random() < 0.3), frontface=bool(rng.random() < 0.2),
                  subpixel=bool(rng.random() < 0.5),
                  wmpack=0xFFFFFFFF if rng.random() < 0.8 else 0)
-    return obj, col, tris, state
+    planes = rng.normal(size=(int(rng.choice([0, 0, 1, 3])), 4))  # clipplane(3G), eye space
+    return obj, col, tris, state, planes
 
 
 def _draw(scene, fused: bool, monkeypatch):
-    obj, col, tris, state = scene
+    obj, col, tris, state, planes = scene
     monkeypatch.setattr(geometry, "FUSED_FRONT", fused)
     ctx = Context(W, H, rgb=True, double=False)
     ctx.matrices.load_projection(perspective(700, W / H, 0.5, 25.0))
     ctx.raster.set(**state)
+    ctx.user_planes = planes
     ctx.draw_arrays("triangles", obj, col, indices=tris)
     ctx.flush()
     return ctx.fb.front.copy(), ctx.fb.z.copy()
@@ -67,7 +70,7 @@ def test_fused_front_end_gives_identical_planes_on_random_scenes(monkeypatch, nt
             for name, a, b in zip(("colour", "z"), got, want, strict=True):
                 np.testing.assert_array_equal(a, b, err_msg=f"scene {i}: {name}")
             drawn += bool(want[0].any())
-        assert drawn > 15  # the scenes really draw something
+        assert drawn > 10  # the scenes really draw something
     finally:
         threads.set_threads(None)
 
@@ -76,7 +79,7 @@ def test_fused_front_end_clips_like_the_stage_by_stage_passes(monkeypatch):
     """One triangle through the near plane: both paths draw the clipped part only."""
     obj = np.array([[-3.0, -2.0, -5.0], [3.0, -2.0, -5.0], [0.0, 3.0, 5.0]])
     col = np.array([[1.0, 0, 0, 1], [0, 1.0, 0, 1], [0, 0, 1.0, 1]])
-    scene = (obj, col, np.array([[0, 1, 2]]), dict(zbuffer=True))
+    scene = (obj, col, np.array([[0, 1, 2]]), dict(zbuffer=True), np.zeros((0, 4)))
     want = _draw(scene, False, monkeypatch)
     got = _draw(scene, True, monkeypatch)
     assert 0 < np.count_nonzero(want[0]) < W * H

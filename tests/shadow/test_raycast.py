@@ -240,8 +240,11 @@ def brute_force(scene, w, h, faces, eps=1e-7):
     tris, tri_obj = scene.triangles()
     casts = np.array([o.casts for o in scene.objects])[tri_obj]
     lights = [light_position(li) for li in scene.lights]
-    radius = np.sqrt(3.0) * max(1.0, np.abs(tris).max(), np.abs(np.asarray(scene.camera.eye)).max())
-    far = 4.0 * radius + 1.0
+    # the documented offsets (raycast.segment_scales), from the bounding box
+    lo, hi = tris.reshape(-1, 3).min(axis=0), tris.reshape(-1, 3).max(axis=0)
+    diag = np.linalg.norm(hi - lo)
+    offset = eps * diag + 1e-13 * np.abs(tris).max()
+    far = 2 * (diag + np.linalg.norm(np.asarray(scene.camera.eye) - (lo + hi) / 2)) + 1
     nl = len(lights)
     out = {k: np.zeros((h, w, nl), np.int64) for k in ("lit", "occl", "layers", "cross")}
     out["tri"] = np.full((h, w), -1, np.int64)
@@ -276,7 +279,7 @@ def brute_force(scene, w, h, faces, eps=1e-7):
                     continue
                 p = o + t_end * d
                 seg = (lp[:3] - p) if lp[3] else far * lp[:3] / np.linalg.norm(lp[:3])
-                s0 = eps * radius / np.linalg.norm(seg)
+                s0 = offset / np.linalg.norm(seg)
                 blk, ok = bf_range(p, seg, tris, s0, 1 - s0)
                 blk &= casts
                 blk[k] = False
@@ -387,8 +390,8 @@ def test_rays_through_shared_edges_and_vertices_hit_exactly_one_triangle():
 
 def count_hits(tris, o, d, weights=None):
     """Kernel count of the triangles each ray meets at 0 <= t <= 1 (weights: 1)."""
-    from vgxsim.kernels.raycast import count_crossings, no_window
-    from vgxsim.shadow.raycast import scene_bvh
+    from vgxsim.kernels.raycast import count_crossings
+    from vgxsim.shadow.raycast import no_window, scene_bvh
 
     bvh = scene_bvh(homogeneous(tris))
     w = np.ones(len(tris), np.int64) if weights is None else np.asarray(weights, np.int64)
@@ -612,3 +615,31 @@ def test_shade_lights_only_what_the_cast_says_is_lit(scene, result):
     r = raycast(sun, W, H, faces=[(np.zeros((0, 3, 3)), np.zeros(0, np.int64))])
     top = shade(sun, r)
     assert top[r.hit & r.lit[..., 0]][:, :3].astype(int).sum(1).min() > 0
+
+
+def test_a_scene_moved_far_from_the_origin_keeps_its_shadows():
+    # shadow_literature.md H11: everything moved by ~2^20 (the move itself rounds
+    # the coordinates to 2^-32): the same pixels away from outlines and shadow edges
+    sc = default_scene()
+    shift = np.array([2.0 ** 20, -(2.0 ** 20), 2.0 ** 19])
+
+    def moved(o):
+        return dataclasses.replace(o, vertices=o.vertices + shift)
+
+    cam = sc.camera
+    far_sc = dataclasses.replace(
+        sc, objects=tuple(moved(o) for o in sc.objects),
+        lights=tuple(dataclasses.replace(li, position=tuple(np.add(li.position, shift)))
+                     for li in sc.lights),
+        camera=dataclasses.replace(cam, eye=tuple(np.add(cam.eye, shift)),
+                                   target=tuple(np.add(cam.target, shift))))
+    a = raycast(sc, W, H)
+    b = raycast(far_sc, W, H)
+    classes = np.where(a.hit, a.object_id * 4 + a.lit[..., 0] + 2 * a.lit[..., 1], -1)
+    from vgxsim.shadow.error import near_boundary
+
+    inner = ~near_boundary(classes)
+    assert inner.mean() > 0.8
+    assert np.array_equal(a.object_id[inner], b.object_id[inner])
+    assert np.array_equal(a.lit[inner], b.lit[inner])
+    assert np.array_equal(a.crossings[inner], b.crossings[inner])

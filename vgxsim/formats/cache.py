@@ -28,8 +28,8 @@ import zipfile
 import numpy as np
 
 from vgxsim.shadow.scene import MeshError, Polyhedron, SurfaceMaterial, polyhedron_from_polygons
+from vgxsim.sinks.atomic import atomic_path
 
-from .atomic import atomic_path
 from .errors import FormatError
 from .glo import GloModel, read_glo
 

@@ -35,7 +35,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .atomic import atomic_path
+from vgxsim.sinks.atomic import atomic_path
+
 from .errors import FormatError
 
 NORMAL_MODES = ("none", "face", "vertex")

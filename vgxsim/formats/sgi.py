@@ -10,7 +10,8 @@ import os
 
 import numpy as np
 
-from .atomic import atomic_path
+from vgxsim.sinks.atomic import atomic_path
+
 from .errors import FormatError
 
 

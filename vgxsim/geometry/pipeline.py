@@ -12,8 +12,8 @@ from typing import NamedTuple
 import numpy as np
 
 from vgxsim.geometry.transform import apply
-from vgxsim.kernels.clip import clip_segments, clip_triangles, outcodes, project_snap
-from vgxsim.kernels.lines import count_line_fragments, line_fragments, point_fragments
+from vgxsim.kernels.clip import NO_PLANES, clip_segments, clip_triangles, outcodes, project_snap
+from vgxsim.kernels.lines import count_line_fragments, line_fragments, line_steps, point_fragments
 from vgxsim.state.raster import FLAT, RasterState
 
 #: Fast-path switch: transform, clip, project, snap and set-up of triangles fused per
@@ -36,11 +36,15 @@ class Viewing(NamedTuple):
         Inclusive (l, r, b, t).
     depth : tuple of 2 float
         lsetdepth (near, far).
+    user_planes : ndarray, shape (K, 4), float64
+        The user clip planes on (clipplane(3G)), in clip space: a clip-space point
+        ``p`` (row) is kept where ``user_planes @ p >= 0`` for every row.
     """
 
     mvp: np.ndarray
     viewport: tuple
     depth: tuple
+    user_planes: np.ndarray = NO_PLANES
 
 
 def _guard(viewport) -> tuple[float, float]:
@@ -121,7 +125,7 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
     attr = np.ascontiguousarray(rgba, dtype=np.float64) if want else np.zeros((clip_v.shape[0], 0))
     gx, gy = _guard(view.viewport)
     out_v, out_attr, out_tris, out_src = clip_triangles(
-        np.ascontiguousarray(clip_v), attr, tris, gx, gy)
+        np.ascontiguousarray(clip_v), attr, tris, gx, gy, view.user_planes)
     xf, yf, zw = _project(out_v, view, rs.subpixel)
     flat = None
     if want and (rs.shademodel == FLAT):
@@ -161,10 +165,12 @@ def _draw_fused(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgb
     if tri_states is not None:
         states, per_tri = tri_states
         return batch.add_object_triangles(obj, mvp, view.viewport, view.depth,
-                                          _guard(view.viewport), attr, tris, flat, states,
+                                          _guard(view.viewport), view.user_planes, attr,
+                                          tris, flat, states,
                                           np.ascontiguousarray(per_tri, dtype=np.int64))
     return batch.add_object_triangles(obj, mvp, view.viewport, view.depth,
-                                      _guard(view.viewport), attr, tris, flat, [rs])
+                                      _guard(view.viewport), view.user_planes, attr, tris,
+                                      flat, [rs])
 
 
 def draw_lines(batch, rs: RasterState, view: Viewing, obj, rgba, segs, pattern_start,
@@ -181,7 +187,45 @@ def draw_lines(batch, rs: RasterState, view: Viewing, obj, rgba, segs, pattern_s
         Line-style position at each segment's first vertex.
     closed : bool, optional
         Defaults to the IRIS rule: closed without subpixel, half-open with it.
+
+    Returns
+    -------
+    int
+        Fragments queued.
     """
+    seg = _clipped_segments(rs, view, obj, rgba, segs)
+    if seg is None:
+        return 0
+    starts = np.asarray(pattern_start, np.int64)[seg[-1]]
+    return _queue_segments(batch, rs, seg, starts, closed)
+
+
+def draw_polyline(batch, rs: RasterState, view: Viewing, obj, rgba, segs,
+                  pattern_offset: int = 0) -> int:
+    """:func:`draw_lines` for the segments of one polyline, in order, with the
+    line-style position counted per pixel drawn (deflinestyle(3G)).
+
+    The first segment starts at ``pattern_offset``; each following one starts where
+    the previous one's last pixel is, counted with the rasterizer's own step count on
+    the snapped (and clipped) endpoints (docs/numeric_model.md s. 5).
+
+    Returns
+    -------
+    int
+        Line-style position after the last segment (where the next draw continues).
+    """
+    seg = _clipped_segments(rs, view, obj, rgba, segs)
+    if seg is None:
+        return int(pattern_offset)
+    steps = line_steps(seg[0], seg[1])
+    ends = int(pattern_offset) + np.cumsum(steps)
+    _queue_segments(batch, rs, seg, ends - steps, None)
+    return int(ends[-1])
+
+
+def _clipped_segments(rs: RasterState, view: Viewing, obj, rgba, segs):
+    """Clip and snap segments: (seg_xf, seg_yf, seg_z, seg_c, src) or None when
+    nothing is left; ``src`` is the input segment of each (in input order)."""
     clip_v = to_clip(obj, view.mvp)
     segs = np.ascontiguousarray(segs, dtype=np.int64).reshape(-1, 2)
     n = clip_v.shape[0]
@@ -191,24 +235,28 @@ def draw_lines(batch, rs: RasterState, view: Viewing, obj, rgba, segs, pattern_s
         attr = attr.copy()
         flat = attr[segs[:, 1]]
     gx, gy = _guard(view.viewport)
-    cv, ca, src, _t0 = clip_segments(np.ascontiguousarray(clip_v), attr, segs, gx, gy)
+    cv, ca, src, _t0 = clip_segments(np.ascontiguousarray(clip_v), attr, segs, gx, gy,
+                                     view.user_planes)
     if cv.shape[0] == 0:
-        return 0
+        return None
     xf, yf, zw = _project(np.ascontiguousarray(cv.reshape(-1, 4)), view, rs.subpixel)
-    seg_xf = xf.reshape(-1, 2)
-    seg_yf = yf.reshape(-1, 2)
-    seg_z = zw.reshape(-1, 2)
     seg_c = np.ascontiguousarray(ca)
     if rs.shademodel == FLAT:
         seg_c = np.repeat(flat[src][:, None, :], 2, axis=1)
+    return (np.ascontiguousarray(xf.reshape(-1, 2)), np.ascontiguousarray(yf.reshape(-1, 2)),
+            np.ascontiguousarray(zw.reshape(-1, 2)), seg_c, src)
+
+
+def _queue_segments(batch, rs: RasterState, seg, starts, closed) -> int:
+    seg_xf, seg_yf, seg_z, seg_c, _src = seg
     closed = (not rs.subpixel) if closed is None else closed
     total = count_line_fragments(seg_xf, seg_yf, closed, rs.linewidth)
     out_xy = np.empty((total, 2), np.int64)
     out_z = np.empty(total, np.int64)
     out_c = np.empty(total, np.int64)
-    starts = np.ascontiguousarray(np.asarray(pattern_start, np.int64)[src])
-    nf = line_fragments(seg_xf, seg_yf, seg_z, seg_c, starts, closed, rs.linewidth,
-                        rs.linestyle, max(1, rs.lsrepeat), out_xy, out_z, out_c, 0)
+    nf = line_fragments(seg_xf, seg_yf, seg_z, seg_c, np.ascontiguousarray(starts, np.int64),
+                        closed, rs.linewidth, rs.linestyle, max(1, rs.lsrepeat), out_xy,
+                        out_z, out_c, 0)
     batch.add_fragments(out_xy[:nf], out_z[:nf], out_c[:nf], rs)
     return nf
 
@@ -217,7 +265,7 @@ def draw_points(batch, rs: RasterState, view: Viewing, obj, rgba) -> int:
     """Transform, cull outside the view volume, and queue points as fragments."""
     clip_v = np.ascontiguousarray(to_clip(obj, view.mvp))
     gx, gy = _guard(view.viewport)
-    keep = outcodes(clip_v, gx, gy) == 0
+    keep = outcodes(clip_v, gx, gy, view.user_planes) == 0
     if not keep.any():
         return 0
     clip_v = np.ascontiguousarray(clip_v[keep])

@@ -8,13 +8,16 @@ validates its arguments and raises a :class:`GLError` subclass naming the call.
 from vgxsim.GL import *  # noqa: F401,F403  (constants, for convenience)
 
 from ._accum import *  # noqa: F401,F403
+from ._clip import *  # noqa: F401,F403
 from ._color import *  # noqa: F401,F403
 from ._compat import *  # noqa: F401,F403
 from ._core import GLError, GLTypeError, GLUsageError, GLValueError  # noqa: F401
 from ._curves import *  # noqa: F401,F403
+from ._depthcue import *  # noqa: F401,F403
 from ._draw import *  # noqa: F401,F403
 from ._events import *  # noqa: F401,F403
 from ._fm import *  # noqa: F401,F403
+from ._fog import *  # noqa: F401,F403
 from ._lighting import *  # noqa: F401,F403
 from ._matrix import *  # noqa: F401,F403
 from ._menus import *  # noqa: F401,F403

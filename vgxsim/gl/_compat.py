@@ -31,11 +31,20 @@ meaning they can have headless, so such programs run unchanged.
   (every swapbuffers is one frame), ``gsync`` (no vertical retrace to wait for),
   ``ringbell``/``setbell``, ``clkon``/``clkoff`` (keyclick), ``lampon``/``lampoff``
   (keyboard lamps): validated and recorded in ``compat_state()``, no effect.
+* ``scrsubdivide(mode, params)``: SS_OFF / SS_DEPTH subdivision of primitives in
+  screen space, which the VGX used to correct texture and fog interpolation.
+  Accepted and recorded (``compat_state().subdivide``); drawing is unchanged: vgxsim
+  has no textures, and its fog is evaluated at the primitive's own vertices.
+* ``gl_invert4d(m) -> list of 16 floats``: the inverse of a 4x4 matrix given as
+  getmatrix returns one (IGL's helper; a singular matrix is a GLValueError).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+
+import numpy as np
 
 from vgxsim import DEVICE, GL
 
@@ -58,7 +67,7 @@ __all__ = [
     "sboxfi", "sboxfs", "splf", "splfi", "splfs", "splf2", "splf2i", "splf2s", "getdepth",
     "nmode", "getdev", "setvaluator", "swapinterval", "gsync", "ringbell", "setbell",
     "clkon", "clkoff", "lampon", "lampoff", "mapcolors", "getmcolors", "RGBsize",
-    "monobuffer", "pushattributes", "popattributes",
+    "monobuffer", "pushattributes", "popattributes", "scrsubdivide", "gl_invert4d",
 ]
 
 ATTRIBSTACKDEPTH = int(GL.ATTRIBSTACKDEPTH)
@@ -76,6 +85,7 @@ class CompatState:
     lamps: int = 0
     bells_rung: int = 0
     nmode: int = 0
+    subdivide: tuple = (0, ())  # scrsubdivide (mode, params)
 
 
 def compat_state() -> CompatState:
@@ -346,3 +356,34 @@ def popattributes(*args) -> None:
     ctx.colour, ctx.colour_index = saved["colour"], saved["colour_index"]
     ctx.font, ctx.linestyle_index = saved["font"], saved["linestyle_index"]
     ctx.raster.set(**saved["raster"])
+
+
+@gl_function()
+def scrsubdivide(mode: int, params=()) -> None:
+    """Screen-space subdivision (scrsubdivide(3G)): accepted, see the module
+    docstring.  ``params`` (SS_DEPTH): up to three finite numbers."""
+    args = (mode, params)
+    m = as_int("scrsubdivide", args, "mode", mode)
+    if m not in (int(GL.SS_OFF), int(GL.SS_DEPTH)):
+        raise GLValueError(f"{describe('scrsubdivide', args)}: mode {m} is not a valid "
+                           "token (SS_OFF or SS_DEPTH)")
+    vals = flat_numbers("scrsubdivide", (params,), None) if m == GL.SS_DEPTH else []
+    if len(vals) > 3 or not all(math.isfinite(v) for v in vals):
+        raise GLValueError(f"{describe('scrsubdivide', args)}: params are up to three "
+                           "finite numbers")
+    current("scrsubdivide", args)
+    compat_state().subdivide = (m, tuple(vals))
+
+
+@gl_function(record=False)
+def gl_invert4d(m) -> list[float]:
+    """The inverse of the 4x4 matrix ``m`` (16 numbers, row-major as getmatrix)."""
+    args = (m,)
+    vals = np.array(flat_numbers("gl_invert4d", args, 16), np.float64).reshape(4, 4)
+    try:
+        inv = np.linalg.inv(vals)
+    except np.linalg.LinAlgError:
+        raise GLValueError(f"{describe('gl_invert4d', args)}: the matrix is singular") from None
+    if not np.isfinite(inv).all():
+        raise GLValueError(f"{describe('gl_invert4d', args)}: the matrix is singular")
+    return [float(x) for x in inv.reshape(-1)]

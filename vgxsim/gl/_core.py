@@ -64,6 +64,8 @@ class _Session:
         self.prefsize: tuple[int, int] | None = None
         self.prefposition: tuple[int, int, int, int] | None = None
         self.default_size = (640, 512)  # winopen without prefsize (vgxsim run --size)
+        # vgxsim run --size: the size a user reshapes every new window to (None: none).
+        self.reshape_size: tuple[int, int] | None = None
         self.queue = None  # vgxsim.events.EventQueue, created lazily
         self.sink_factory = None  # callable(gid) -> sink, set by `vgxsim run`
         self.objects: dict[int, object] = {}  # display objects (gl/_objects.py), by name

@@ -133,7 +133,8 @@ def _restate(ctx, st) -> None:
     regs = ctx.raster
     if (regs._snapshot is not None and regs._snapshot is st.raster
             and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
-            and ctx.lighting_serial == st.lighting_serial and ctx.concave is st.concave):
+            and ctx.lighting_serial == st.lighting_serial and ctx.concave is st.concave
+            and ctx.vertex_serial == st.vertex_serial):
         return
     idx = ctx.states.intern(ctx)
     st.raster = regs._snapshot
@@ -141,6 +142,7 @@ def _restate(ctx, st) -> None:
     st.depth = ctx.depth_range
     st.lighting_serial = ctx.lighting_serial
     st.concave = ctx.concave
+    st.vertex_serial = ctx.vertex_serial
     st.ops.append(STATE)
     st.ops.append(idx)
 

@@ -1,4 +1,6 @@
-"""IRIS GL calls: display objects -- genobj, makeobj, closeobj, callobj, delobj, isobj.
+"""IRIS GL calls: display objects -- genobj, makeobj, closeobj, callobj, delobj, isobj,
+and their editing: editobj, maketag, gentag, istag, deltag, objinsert, objdelete,
+objreplace, chunksize, compactify.
 
 While ``makeobj`` is open, every recordable gl call is stored in the object instead
 of being executed ("subsequent graphics routines are compiled into the display list
@@ -28,9 +30,24 @@ opened, a colour call in a colour-map window -- is checked at the callobj.
 
 **Nesting.**  callobj inside objects runs on an explicit stack, not Python's:
 at most :data:`MAX_NESTING` objects deep (a GLUsageError past it).
+
+**Editing** (editobj(3G), maketag(3G), objinsert(3G), objdelete(3G), objreplace(3G)).
+An object's *routines* are its segments: each non-vertex call, and each run of
+vertex-stream calls between two of them (one :class:`Chunk`); a tag is a marker
+between routines.  ``editobj`` reopens an object with the editing pointer at its end
+(new routines are appended); ``objinsert(t)`` moves the pointer to just after tag
+``t``; ``objreplace(t)`` too, and then each routine recorded overwrites the routine
+that follows the pointer, one for one (a tag there stops the overwriting and routines
+are inserted again), until closeobj or another positioning call; ``objdelete(t1,
+t2)`` removes the routines and tags between the two tags (not the tags themselves)
+and leaves the pointer at the end of the object.  STARTTAG and ENDTAG are the
+object's two ends.  A tag, an edit call or a closeobj ends the current chunk, so a
+tag always falls between routines.
 """
 
 from __future__ import annotations
+
+import numpy as np
 
 from vgxsim import GL
 from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, V
@@ -41,6 +58,7 @@ from ._core import (
     GLTypeError,
     GLUsageError,
     GLValueError,
+    as_float,
     as_int,
     check_types,
     current,
@@ -51,7 +69,9 @@ from ._core import (
 from ._draw import CLOSER, OPENER, _restate, sync
 
 __all__ = ["genobj", "makeobj", "closeobj", "callobj", "delobj", "isobj", "getopenobj",
-           "MAX_NESTING"]
+           "editobj", "maketag", "newtag", "gentag", "istag", "deltag", "objinsert",
+           "objdelete", "callfunc", "bbox2", "bbox2i", "bbox2s",
+           "objreplace", "chunksize", "compactify", "MAX_NESTING"]
 
 MAX_OBJECT = 2**31 - 1  # Object is a 31-bit integer (makeobj(3G))
 #: Deepest callobj nesting (objects calling objects).  IRIS GL documents no limit;
@@ -71,20 +91,63 @@ class DisplayObject:
     def program(self) -> list:
         """('run', chunk) and ('call', func, args) entries, in order."""
         return [("run", g) if isinstance(g, Chunk) else ("call", g[0], g[1])
-                for g in self.segments]
+                for g in self.segments if not isinstance(g, Tag)]
 
     def __len__(self) -> int:
         return len(self.segments)
 
 
-class ObjectRecorder:
-    """What recordable calls append to while makeobj is open."""
+class Tag:
+    """A tag (maketag(3G)): a named position between an object's routines."""
 
-    def __init__(self):
-        self.segments: list = []
+    __slots__ = ("name",)
+
+    def __init__(self, name: int):
+        self.name = name
+
+
+class ObjectRecorder:
+    """What recordable calls append to while makeobj (or editobj) is open.
+
+    ``pos`` is the editing pointer (an index into ``segments``); ``replacing`` says
+    whether new routines overwrite the ones after it (objreplace(3G)).
+    """
+
+    def __init__(self, segments: list | None = None):
+        self.segments: list = [] if segments is None else list(segments)
+        self.pos = len(self.segments)
+        self.replacing = False
         self.chunk: Chunk | None = None
         self.prim = None  # primitive open inside the chunk (None: as the chunk began)
         self.known = False  # whether ``prim`` is known (the chunk opened or closed one)
+
+    def _put(self, seg) -> None:
+        """Insert a routine at the pointer (overwriting the next one when replacing)."""
+        if (self.replacing and self.pos < len(self.segments)
+                and not isinstance(self.segments[self.pos], Tag)):
+            self.segments[self.pos] = seg
+        else:
+            self.replacing = False
+            self.segments.insert(self.pos, seg)
+        self.pos += 1
+
+    def tag_index(self, name: int) -> int:
+        """Index of tag ``name``'s marker; STARTTAG is -1 (before everything), ENDTAG
+        the end; -2 when there is no such tag."""
+        if name == GL.STARTTAG:
+            return -1
+        if name == GL.ENDTAG:
+            return len(self.segments)
+        for i, seg in enumerate(self.segments):
+            if isinstance(seg, Tag) and seg.name == name:
+                return i
+        return -2
+
+    def move_to(self, index: int, replacing: bool) -> None:
+        """Put the pointer just after the marker at ``index`` and end the chunk."""
+        self.pos = min(index + 1, len(self.segments))
+        self.replacing = replacing
+        self.chunk = None
 
     def append(self, item) -> None:
         call, args = item
@@ -99,12 +162,12 @@ class ObjectRecorder:
         if getattr(call, "gl_arity", None) is not None:
             check_types(call, args)
         self.chunk = None
-        self.segments.append((call, args))
+        self._put((call, args))
 
     def _current_chunk(self) -> Chunk:
         if self.chunk is None:
             self.chunk = Chunk()
-            self.segments.append(self.chunk)
+            self._put(self.chunk)
             self.prim, self.known = None, False
         return self.chunk
 
@@ -233,6 +296,185 @@ def closeobj(*args) -> None:
 
 
 @gl_function(record=False)
+def editobj(*args) -> None:
+    """editobj(obj): reopen object ``obj`` for editing, the pointer at its end
+    (editobj(3G)); closeobj ends the editing.  An undefined object is an error."""
+    obj = _object_arg("editobj", args)
+    current("editobj", args)
+    if session.open_object is not None:
+        raise GLUsageError(f"{describe('editobj', args)}: object {session.open_object} is "
+                           f"still open (call closeobj first)")
+    dobj = session.objects.get(obj)
+    if dobj is None:
+        raise GLValueError(f"{describe('editobj', args)}: object {obj} is not defined "
+                           "(makeobj first)")
+    session.open_object = obj
+    session.recording = ObjectRecorder(dobj.segments)
+
+
+def _editing(name: str, args: tuple) -> ObjectRecorder:
+    """The recorder of the open object; GLUsageError when none is open."""
+    current(name, args)
+    if session.open_object is None:
+        raise GLUsageError(f"{describe(name, args)}: no object is open (makeobj or "
+                           "editobj first)")
+    return session.recording
+
+
+def _tag_arg(name: str, args: tuple, what: str, v) -> int:
+    t = as_int(name, args, what, v)
+    if not -3 <= t <= MAX_OBJECT:
+        raise GLValueError(f"{describe(name, args)}: a Tag is a 31-bit integer "
+                           f"(or STARTTAG / ENDTAG)")
+    return t
+
+
+def _find_tag(name: str, args: tuple, rec: ObjectRecorder, t: int) -> int:
+    i = rec.tag_index(t)
+    if i == -2:
+        raise GLValueError(f"{describe(name, args)}: tag {t} is not in object "
+                           f"{session.open_object}")
+    return i
+
+
+@gl_function(record=False)
+def maketag(t: int) -> None:
+    """maketag(t): put tag ``t`` at the editing pointer of the open object."""
+    args = (t,)
+    rec = _editing("maketag", args)
+    t = _tag_arg("maketag", args, "t", t)
+    if t < 0:
+        raise GLValueError(f"{describe('maketag', args)}: STARTTAG and ENDTAG are "
+                           "predefined")
+    if rec.tag_index(t) != -2:
+        raise GLValueError(f"{describe('maketag', args)}: tag {t} already exists in "
+                           f"object {session.open_object}")
+    rec.chunk = None
+    rec.replacing = False
+    rec.segments.insert(rec.pos, Tag(t))
+    rec.pos += 1
+
+
+@gl_function(record=False)
+def newtag(newtg: int, oldtg: int, offset: int) -> None:
+    """newtag(newtg, oldtg, offset): tag ``newtg`` ``offset`` routines after tag
+    ``oldtg`` (newtag(3G)); tags between are not counted as routines."""
+    args = (newtg, oldtg, offset)
+    rec = _editing("newtag", args)
+    t = _tag_arg("newtag", args, "newtg", newtg)
+    if t < 0 or rec.tag_index(t) != -2:
+        raise GLValueError(f"{describe('newtag', args)}: tag {t} is predefined or already "
+                           f"exists in object {session.open_object}")
+    i = _find_tag("newtag", args, rec, _tag_arg("newtag", args, "oldtg", oldtg))
+    n = as_int("newtag", args, "offset", offset)
+    j = i + 1
+    while n > 0:
+        if j >= len(rec.segments):
+            raise GLValueError(f"{describe('newtag', args)}: fewer than {offset} routines "
+                               f"follow tag {oldtg}")
+        if not isinstance(rec.segments[j], Tag):
+            n -= 1
+        j += 1
+    if n < 0:
+        raise GLValueError(f"{describe('newtag', args)}: offset must be >= 0")
+    rec.segments.insert(j, Tag(t))
+    if rec.pos >= j:
+        rec.pos += 1
+    rec.chunk = None
+
+
+@gl_function(record=False)
+def gentag(*args) -> int:
+    """gentag() -> int: a tag number not used in the open object (gentag(3G))."""
+    rec = _editing("gentag", args)
+    used = [seg.name for seg in rec.segments if isinstance(seg, Tag)]
+    return max(used, default=0) + 1
+
+
+@gl_function(record=False)
+def istag(t: int) -> int:
+    """istag(t) -> 1 if ``t`` is a tag of the open object, else 0."""
+    args = (t,)
+    rec = _editing("istag", args)
+    return int(rec.tag_index(_tag_arg("istag", args, "t", t)) != -2)
+
+
+@gl_function(record=False)
+def deltag(t: int) -> None:
+    """deltag(t): remove tag ``t`` (not the routines around it) from the open object."""
+    args = (t,)
+    rec = _editing("deltag", args)
+    t = _tag_arg("deltag", args, "t", t)
+    if t < 0:
+        raise GLValueError(f"{describe('deltag', args)}: STARTTAG and ENDTAG cannot be "
+                           "deleted")
+    i = _find_tag("deltag", args, rec, t)
+    del rec.segments[i]
+    if rec.pos > i:
+        rec.pos -= 1
+    rec.chunk = None
+
+
+@gl_function(record=False)
+def objinsert(t: int) -> None:
+    """objinsert(t): insert new routines just after tag ``t``."""
+    args = (t,)
+    rec = _editing("objinsert", args)
+    rec.move_to(_find_tag("objinsert", args, rec, _tag_arg("objinsert", args, "t", t)),
+                False)
+
+
+@gl_function(record=False)
+def objreplace(t: int) -> None:
+    """objreplace(t): overwrite the routines after tag ``t``, one for one."""
+    args = (t,)
+    rec = _editing("objreplace", args)
+    rec.move_to(_find_tag("objreplace", args, rec, _tag_arg("objreplace", args, "t", t)),
+                True)
+
+
+@gl_function(record=False)
+def objdelete(tag1: int, tag2: int) -> None:
+    """objdelete(tag1, tag2): remove what lies between the two tags; the pointer goes
+    to the end of the object."""
+    args = (tag1, tag2)
+    rec = _editing("objdelete", args)
+    i = _find_tag("objdelete", args, rec, _tag_arg("objdelete", args, "tag1", tag1))
+    j = _find_tag("objdelete", args, rec, _tag_arg("objdelete", args, "tag2", tag2))
+    if j < i:
+        raise GLValueError(f"{describe('objdelete', args)}: tag2 comes before tag1 in "
+                           f"object {session.open_object}")
+    del rec.segments[i + 1:j]
+    rec.move_to(len(rec.segments) - 1, False)
+
+
+@gl_function(record=False)
+def chunksize(chunk: int) -> None:
+    """chunksize(chunk): the allocation unit of display objects, in bytes
+    (chunksize(3G): called before makeobj).  vgxsim grows objects as Python lists, so
+    the size changes nothing; the value is validated only."""
+    args = (chunk,)
+    n = as_int("chunksize", args, "chunk", chunk)
+    if n <= 0:
+        raise GLValueError(f"{describe('chunksize', args)}: the chunk size must be "
+                           "positive")
+    if session.open_object is not None:
+        raise GLUsageError(f"{describe('chunksize', args)}: an object is open (chunksize "
+                           "is called before makeobj)")
+
+
+@gl_function(record=False)
+def compactify(*args) -> None:
+    """compactify(obj): store an edited object compactly (compactify(3G)).  Drawing is
+    unchanged by definition, and vgxsim's objects (Python lists) keep no gaps after
+    editing, so there is nothing to reclaim: the object is validated only."""
+    obj = _object_arg("compactify", args)
+    current("compactify", args)
+    if obj not in session.objects:
+        raise GLValueError(f"{describe('compactify', args)}: object {obj} is not defined")
+
+
+@gl_function(record=False)
 def getopenobj(*args) -> int:
     """getopenobj() -> int: the object being defined, or -1."""
     return -1 if session.open_object is None else int(session.open_object)
@@ -260,7 +502,13 @@ def callobj(*args) -> None:
         if isinstance(seg, Chunk):
             splice(ctx, seg)
             continue
+        if isinstance(seg, Tag):
+            continue
         func, fargs = seg
+        if func in _BBOX and _bbox_culls(ctx, func.__name__, fargs):
+            stack.pop()  # bbox2(3G): the rest of this object is not drawn
+            chain.pop()
+            continue
         if func is callobj:
             inner = _object_arg("callobj", fargs)
             inner_obj = session.objects.get(inner)
@@ -277,6 +525,69 @@ def callobj(*args) -> None:
             stack.append((inner_obj.segments, 0))
             continue
         func(*fargs)
+
+
+@gl_function()
+def callfunc(fctn, *args) -> None:
+    """callfunc(fctn, arg, ...): call the Python callable ``fctn(arg, ...)``, in
+    immediate mode at once and from a display object each time it is drawn
+    (callfunc(3G); the C form's ``nargs`` is implied by the arguments)."""
+    if not callable(fctn):
+        raise GLTypeError(f"{describe('callfunc', (fctn, *args))}: fctn must be callable")
+    fctn(*args)
+
+
+def _bbox_args(name: str, args: tuple, integer: bool) -> tuple:
+    conv = as_int if integer else as_float
+    names = ("xmin", "ymin", "x1", "y1", "x2", "y2")
+    vals = [as_int(name, args, n, v) for n, v in zip(names[:2], args[:2], strict=True)]
+    vals += [conv(name, args, n, v) for n, v in zip(names[2:], args[2:], strict=True)]
+    return tuple(vals)
+
+
+@gl_function()
+def bbox2(xmin: int, ymin: int, x1: float, y1: float, x2: float, y2: float) -> None:
+    """bbox2(xmin, ymin, x1, y1, x2, y2): in a display object, stop drawing the rest of
+    the object when the box (x1, y1)-(x2, y2) (object coordinates, z = 0) lies
+    wholly outside the viewport, or covers fewer than ``xmin`` pixels across and fewer
+    than ``ymin`` up (bbox2(3G)).  Outside objects it has no effect."""
+    _bbox_args("bbox2", (xmin, ymin, x1, y1, x2, y2), False)
+
+
+@gl_function()
+def bbox2i(xmin: int, ymin: int, x1: int, y1: int, x2: int, y2: int) -> None:
+    """:func:`bbox2` with integer coordinates."""
+    _bbox_args("bbox2i", (xmin, ymin, x1, y1, x2, y2), True)
+
+
+@gl_function()
+def bbox2s(xmin: int, ymin: int, x1: int, y1: int, x2: int, y2: int) -> None:
+    """:func:`bbox2` with short coordinates."""
+    _bbox_args("bbox2s", (xmin, ymin, x1, y1, x2, y2), True)
+
+
+_BBOX = (bbox2, bbox2i, bbox2s)
+
+
+def _bbox_culls(ctx, name: str, fargs: tuple) -> bool:
+    """Whether a bbox2 routine culls the rest of its object, in the caller's state.
+
+    The corners go through the current matrices to window coordinates (numeric
+    model s. 1); a corner at or behind the eye (w <= 0) never culls, since its box
+    has no bounded window extent."""
+    xmin, ymin, x1, y1, x2, y2 = _bbox_args(name, fargs, name != "bbox2")
+    corners = np.array([[x1, y1, 0.0, 1.0], [x2, y1, 0.0, 1.0], [x1, y2, 0.0, 1.0],
+                        [x2, y2, 0.0, 1.0]]) @ ctx.matrices.mvp()
+    w = corners[:, 3]
+    if not (w > 0).all():
+        return False
+    l, r, b, t = ctx.raster.viewport
+    wx = (l - 0.5) + (corners[:, 0] / w + 1.0) * (r - l + 1) / 2.0
+    wy = (b - 0.5) + (corners[:, 1] / w + 1.0) * (t - b + 1) / 2.0
+    outside = (wx.max() < l - 0.5 or wx.min() > r + 0.5 or wy.max() < b - 0.5
+               or wy.min() > t + 0.5)
+    small = (wx.max() - wx.min()) < xmin and (wy.max() - wy.min()) < ymin
+    return bool(outside or small)
 
 
 def _colour_op(ctx) -> int:

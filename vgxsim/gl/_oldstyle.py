@@ -242,7 +242,8 @@ rpdr2, rpdr2i, rpdr2s = (_make_rpoly(2, s, False) for s in ("", "i", "s"))
 # -- move / draw -----------------------------------------------------------------------
 def _move_to(ctx, p) -> None:
     ctx.gpos = p
-    ctx.linestyle_pos = 0  # a move starts a new polyline: the pattern restarts
+    if getattr(ctx, "resetls", True):
+        ctx.linestyle_pos = 0  # a move starts a new polyline: the pattern restarts
 
 
 def _draw_to(ctx, p) -> None:

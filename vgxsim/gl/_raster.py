@@ -37,7 +37,8 @@ __all__ = [
     "stencil", "sclear", "swritemask", "wmpack", "RGBwritemask", "blendfunction",
     "afunction", "logicop", "backface", "frontface", "getbackface", "shademodel", "getsm",
     "linewidth", "linewidthf", "getlwidth", "deflinestyle", "setlinestyle", "getlstyle",
-    "lsrepeat", "getlsrepeat", "linesmooth", "pntsmooth", "polysmooth", "pntsize",
+    "lsrepeat", "getlsrepeat", "resetls", "getresetls", "linesmooth", "pntsmooth",
+    "polysmooth", "pntsize",
     "pntsizef", "polymode", "getpolymode", "dither", "glcompat", "clear",
 ]
 
@@ -409,6 +410,24 @@ def lsrepeat(factor: int) -> None:
     limit of an 8-bit factor is assumed)."""
     ctx = current("lsrepeat", (factor,))
     ctx.raster.set(lsrepeat=_in_range("lsrepeat", (factor,), "factor", factor, 1, 255))
+
+
+@gl_function()
+def resetls(b: int) -> None:
+    """resetls(FALSE): the line-style pattern continues from one line to the next
+    instead of restarting at each bgnline, bgnclosedline and move (resetls(3G);
+    TRUE, the default, restarts it).  The position is counted per pixel drawn
+    (docs/numeric_model.md s. 5)."""
+    args = (b,)
+    ctx = current("resetls", args)
+    ctx.resetls = bool(as_int("resetls", args, "b", b))
+    ctx.vertex_serial += 1  # part of the draw state (a record per value)
+
+
+@gl_function(record=False)
+def getresetls() -> int:
+    """1 when the line style restarts at each line (resetls(TRUE)), else 0."""
+    return int(getattr(current("getresetls"), "resetls", True))
 
 
 @gl_function(record=False)

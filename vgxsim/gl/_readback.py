@@ -1,5 +1,18 @@
-"""IRIS GL pixel calls: lrectread, lrectwrite, readRGB, rectcopy, readdisplay,
-packrect/unpackrect, and :func:`read_pixels` for library users.
+"""IRIS GL pixel calls: lrectread, lrectwrite, rectread, rectwrite, rectzoom, readRGB,
+writeRGB, readpixels, writepixels, rectcopy, readdisplay, packrect/unpackrect, and
+:func:`read_pixels` for library users.
+
+Zoom.  ``rectzoom(xfactor, yfactor)`` (rectzoom(3G)) scales what ``lrectwrite`` and
+``rectwrite`` write: destination pixel ``(x1 + X, y1 + Y)`` takes source pixel
+``(floor(X / xfactor), floor(Y / yfactor))``, so an integer factor replicates each
+pixel into an xfactor x yfactor block (**choice** for fractional factors: the
+manual says only that pixels are scaled; this is nearest-pixel sampling).
+``rectcopy`` is not zoomed.
+
+Colour-index rows and rectangles.  ``rectwrite``/``rectread`` are the 16-bit
+(Colorindex) forms of lrectwrite/lrectread, colour-map mode only; ``writepixels(n,
+colors)``/``readpixels(n)`` and ``writeRGB(n, r, g, b)`` (with readRGB) write and read
+a row from the current character position, which then moves past it (writepixels(3G)).
 
 Pixel words.  Colour pixels are packed 0xAABBGGRR (red in the low byte, lrectwrite(3G));
 in colour-map mode the word holds the colour index.  CPython's binding returned
@@ -45,7 +58,8 @@ from ._window import MAX_WINDOW_SIZE
 
 __all__ = [
     "lrectread", "lrectwrite", "readRGB", "rectcopy", "readdisplay", "packrect",
-    "unpackrect", "read_pixels",
+    "unpackrect", "read_pixels", "rectzoom", "rectwrite", "rectread", "writepixels",
+    "readpixels", "writeRGB",
 ]
 
 
@@ -193,13 +207,32 @@ def lrectwrite(x1: int, y1: int, x2: int, y2: int, data) -> None:
     The pixels are written unconditionally -- no z, stencil or alpha test, no
     blending or logicop -- except for the colour write mask (``wmpack``/``writemask``)
     and the viewport/screen mask; they go to the current draw buffers.  ``rectzoom``
-    and ``pixmode`` are not applied.
+    is applied (module docstring); ``pixmode`` is not.
     """
     args = (x1, y1, x2, y2, data)
     r = _corners("lrectwrite", args)
     ctx = current("lrectwrite", args)
     w, h = r[2] - r[0] + 1, r[3] - r[1] + 1
     words = _words("lrectwrite", args, data, w * h).reshape(h, w)
+    _write_rect(ctx, r, words)
+
+
+def _write_rect(ctx, r, words: np.ndarray) -> None:
+    """Write words (h, w) with lower-left corner (r[0], r[1]), zoomed by rectzoom."""
+    zx, zy = getattr(ctx, "rectzoom", (1.0, 1.0))
+    h, w = words.shape
+    if (zx, zy) != (1.0, 1.0):
+        # Destination columns/rows inside the window only, then their source pixel.
+        dw, dh = int(np.ceil(w * zx)), int(np.ceil(h * zy))
+        xa, xb = _clip(r[0], r[0] + dw - 1, ctx.width)
+        ya, yb = _clip(r[1], r[1] + dh - 1, ctx.height)
+        if xa > xb or ya > yb:
+            return
+        sx = np.minimum(np.floor((np.arange(xa, xb + 1) - r[0]) / zx).astype(np.int64), w - 1)
+        sy = np.minimum(np.floor((np.arange(ya, yb + 1) - r[1]) / zy).astype(np.int64), h - 1)
+        part = words[sy[:, None], sx[None, :]]
+        _write_pixels(ctx, xa, ya, part, np.ones(part.shape, bool))
+        return
     # Only the part inside the window can be written: clip before any per-pixel work.
     xa, xb = _clip(r[0], r[2], ctx.width)
     ya, yb = _clip(r[1], r[3], ctx.height)
@@ -420,3 +453,143 @@ def read_pixels(buffer: str = "front", plane: str = "color") -> np.ndarray:
     if plane == "packed":
         return ctx.colour_buffer(buffer).copy()
     return ctx.read_rgba(buffer)
+
+
+@gl_function()
+def rectzoom(xfactor: float, yfactor: float) -> None:
+    """Scale factors of lrectwrite/rectwrite (rectzoom(3G)); both must be > 0."""
+    args = (xfactor, yfactor)
+    zx = float(xfactor) if isinstance(xfactor, (int, float)) else None
+    zy = float(yfactor) if isinstance(yfactor, (int, float)) else None
+    if zx is None or zy is None or isinstance(xfactor, bool) or isinstance(yfactor, bool):
+        raise GLTypeError(f"{describe('rectzoom', args)}: the factors must be numbers")
+    if not (0.0 < zx < 2049.0 and 0.0 < zy < 2049.0):
+        raise GLValueError(f"{describe('rectzoom', args)}: the factors must be > 0 "
+                           "(and at most 2048)")
+    current("rectzoom", args).rectzoom = (zx, zy)
+
+
+def _cmode_only(ctx, name: str, args: tuple) -> None:
+    if ctx.config.rgb:
+        raise GLUsageError(f"{describe(name, args)}: {name} moves colour indices and works "
+                           "only in colour-map mode (use the l* or RGB form in RGB mode)")
+
+
+@gl_function(record=False)
+def rectwrite(x1: int, y1: int, x2: int, y2: int, data) -> None:
+    """Write a rectangle of 16-bit colour indices (rectwrite(3G)): ``data`` is bytes
+    of little-endian 16-bit words (as rectread returns) or a sequence of ints."""
+    args = (x1, y1, x2, y2, data)
+    r = _corners("rectwrite", args)
+    ctx = current("rectwrite", args)
+    _cmode_only(ctx, "rectwrite", args)
+    w, h = r[2] - r[0] + 1, r[3] - r[1] + 1
+    n = w * h
+    if isinstance(data, (bytes, bytearray, memoryview)):
+        raw = bytes(data)
+        if len(raw) < 2 * n:
+            raise GLValueError(f"{describe('rectwrite', args)}: data has {len(raw)} bytes, "
+                               f"the rectangle needs {n} pixels = {2 * n} bytes")
+        words = np.frombuffer(raw, dtype="<u2", count=n).astype(np.int64)
+    else:
+        words = _words("rectwrite", args, data, n) & 0xFFFF
+    _write_rect(ctx, r, words.reshape(h, w))
+
+
+@gl_function(record=False)
+def rectread(x1: int, y1: int, x2: int, y2: int) -> bytes:
+    """Read a rectangle of colour indices as little-endian 16-bit words, bottom row
+    first (rectread(3G)); colour-map mode only."""
+    args = (x1, y1, x2, y2)
+    r = _corners("rectread", args)
+    _returned_size("rectread", args, *r)
+    ctx = current("rectread", args)
+    _cmode_only(ctx, "rectread", args)
+    words = _region(_source(ctx, "rectread", args, allow_z=False), *r)
+    return np.ascontiguousarray(words & 0xFFFF, dtype="<u2").tobytes()
+
+
+def _row_start(ctx, name: str, args: tuple, n: int):
+    """(x, y, count) of a row access at the character position, or None when the
+    position is undefined (nothing is read or written, as readRGB)."""
+    if n < 0:
+        raise GLValueError(f"{describe(name, args)}: n must not be negative")
+    if not getattr(ctx, "cpos_valid", True):
+        return None
+    cpos = tuple(ctx.cpos)
+    x, y = int(round(float(cpos[0]))), int(round(float(cpos[1])))
+    got = max(0, min(n, ctx.width - x)) if 0 <= y < ctx.height and 0 <= x < ctx.width else 0
+    return x, y, got
+
+
+def _advance(ctx, x: int, y: int, n: int) -> None:
+    cpos = tuple(ctx.cpos)
+    ctx.cpos = (x + n, y) + cpos[2:]
+    vl, vr, vb, vt = ctx.raster.viewport
+    if not (vl <= x + n <= vr and vb <= y <= vt):
+        ctx.cpos_valid = False
+
+
+def _row_values(name: str, args: tuple, vals, n: int, lo: int, hi: int) -> np.ndarray:
+    arr = np.asarray(list(vals) if not isinstance(vals, np.ndarray) else vals)
+    if arr.size != n or arr.dtype.kind not in "iub":
+        raise GLTypeError(f"{describe(name, args)}: expected {n} integers")
+    arr = arr.reshape(-1).astype(np.int64)
+    if arr.size and (arr.min() < lo or arr.max() > hi):
+        raise GLValueError(f"{describe(name, args)}: values must be {lo}..{hi}")
+    return arr
+
+
+@gl_function(record=False)
+def writepixels(n: int, colors) -> None:
+    """Write ``n`` colour indices along the row at the character position
+    (writepixels(3G)); colour-map mode only.  The position moves past them."""
+    args = (n, colors)
+    count = as_int("writepixels", args, "n", n)
+    ctx = current("writepixels", args)
+    _cmode_only(ctx, "writepixels", args)
+    vals = _row_values("writepixels", args, colors, count, 0, 0xFFFF)
+    _write_row(ctx, "writepixels", args, vals)
+
+
+@gl_function(record=False)
+def writeRGB(n: int, r, g, b) -> None:  # noqa: N802
+    """Write ``n`` RGB pixels (0..255 lists) along the row at the character position
+    (writeRGB(3G)); RGB mode only.  Alpha is written as 0, as lrectwrite's words
+    without an alpha byte."""
+    args = (n, r, g, b)
+    count = as_int("writeRGB", args, "n", n)
+    ctx = current("writeRGB", args)
+    if not ctx.config.rgb:
+        raise GLUsageError(f"{describe('writeRGB', args)}: writeRGB works only in RGB mode")
+    rr, gg, bb = (_row_values("writeRGB", args, c, count, 0, 255) for c in (r, g, b))
+    _write_row(ctx, "writeRGB", args, rr | (gg << 8) | (bb << 16))
+
+
+def _write_row(ctx, name: str, args: tuple, words: np.ndarray) -> None:
+    start = _row_start(ctx, name, args, words.size)
+    if start is None:
+        return
+    x, y, got = start
+    if got:
+        part = words[:got].reshape(1, got)
+        _write_pixels(ctx, x, y, part, np.ones(part.shape, bool))
+    _advance(ctx, x, y, got)
+
+
+@gl_function(record=False)
+def readpixels(n: int) -> list[int]:
+    """Read ``n`` colour indices along the row at the character position
+    (readpixels(3G)); fewer at the window's right edge.  Colour-map mode only."""
+    args = (n,)
+    count = as_int("readpixels", args, "n", n)
+    ctx = current("readpixels", args)
+    _cmode_only(ctx, "readpixels", args)
+    start = _row_start(ctx, "readpixels", args, count)
+    if start is None:
+        return []
+    x, y, got = start
+    plane = _source(ctx, "readpixels", args, allow_z=False)
+    words = _region(plane, x, y, x + got - 1, y)[0] if got else np.zeros(0, np.uint32)
+    _advance(ctx, x, y, got)
+    return [int(v) & 0xFFFF for v in words]

@@ -17,6 +17,14 @@ sizes raise GLValueError at ``prefsize``, ``prefposition``, ``winposition``,
 ``minsize`` and ``winopen``/``winconstraints`` (for a size made by
 ``keepaspect`` or ``vgxsim run --size``), before anything is allocated.
 
+Reshaping.  ``vgxsim run --size WxH`` acts as a user who reshapes each new window to
+WxH: a window whose program asked for another size (``prefsize``, ``prefposition``)
+opens at that size, with its viewport and ortho2, and is reshaped at once
+(:func:`_reshape`, as ``winposition`` reshapes): its planes take the new size, its
+viewport and screen mask stay until the program calls ``reshapeviewport`` or
+``viewport`` (or ``gconfig`` resets them), and it gets a REDRAW, as the window
+manager sends one after a reshape.
+
 Configuration.  A new window is in colour-map mode, single-buffered, with a 24-bit
 z-buffer and no stencil or accumulation planes (the IRIS GL defaults; the VGX always
 had its z planes).  ``RGBmode``, ``doublebuffer``, ``stensize``, ``acsize``
@@ -244,7 +252,11 @@ def winopen(name: str) -> int:
         ctx.sink = session.sink_factory(gid)
     _baseline(ctx)
     _events.window_opened(gid)
+    if session.reshape_size is not None and session.reshape_size != (w, h):
+        _check_size("winopen", args, *session.reshape_size)
+        _reshape(ctx, *session.reshape_size)
     return gid
+
 
 
 def _window(name: str, args: tuple, gid) -> Context:

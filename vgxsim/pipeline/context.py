@@ -15,9 +15,11 @@ from dataclasses import replace
 
 import numpy as np
 
+from vgxsim.backends import make_batch
 from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, CommandBatch
 from vgxsim.geometry.pipeline import Viewing
 from vgxsim.kernels.accum import accumulate
+from vgxsim.kernels.clip import NO_PLANES
 from vgxsim.lighting import LightingError, LightingTables, light_to_eye
 from vgxsim.pipeline.decode import drain
 from vgxsim.pipeline.draw import commit_triangles
@@ -90,6 +92,20 @@ class Context:
         self.prim: str | None = None
         self.concave = False
         self.linestyle_pos = 0  # line-style position after the last line drawn
+        self.resetls = True  # resetls(3G): the pattern restarts at each line
+        # clipplane(3G) (gl/_clip.py): the six planes' eye-space equations (None:
+        # never defined), which are on, and the (K, 4) array of those on (replaced,
+        # never mutated).  fogvertex(3G) (gl/_fog.py): the fog definition (a
+        # FogState without its modelview, or None) and whether fog is on.  Every
+        # clipplane and fogvertex call bumps ``vertex_serial`` (draw-state interning).
+        self.clip_plane_defs: list = [None] * 6
+        self.clip_planes_on: set[int] = set()
+        self.user_planes = NO_PLANES
+        self.fog_def = None
+        self.fog_on = False
+        self.depthcue = None  # depthcue(3G) (gl/_depthcue.py): the DepthCue ramp
+        self.depthcue_on = False
+        self.vertex_serial = 0
         # Old-style drawing (gl/_oldstyle.py): the current graphics position (object
         # coordinates, move(3G)/draw(3G)); text (gl/_text.py): the current character
         # position in window pixels (cmov(3G)), its z, whether it is defined (cmov:
@@ -116,7 +132,7 @@ class Context:
             self.batch.flush()
         self.config = config
         self.fb = Framebuffer(config)
-        self._batch = CommandBatch(self.fb)
+        self._batch = make_batch(self.fb)  # the backend switch (vgxsim/backends)
         self.stream.forget()
         old = getattr(self, "raster", None)
         self.raster = RasterRegisters(config.width, config.height, config.double)

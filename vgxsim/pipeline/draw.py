@@ -13,11 +13,13 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim.geometry import assembly
-from vgxsim.geometry.pipeline import Viewing, draw_lines, draw_points, draw_triangles
+from vgxsim.geometry.pipeline import Viewing, draw_points, draw_polyline, draw_triangles
 from vgxsim.geometry.transform import apply
 from vgxsim.lighting import shade, shade_runs
 from vgxsim.state.raster import FLAT, needs_colour
 
+from .depthcue import cue_vertices
+from .fog import fog_vertices
 from .records import DrawState, same_projection, same_state
 
 #: Fast-path switch: one geometry pass for consecutive triangle primitives whose
@@ -134,6 +136,16 @@ def shade_groups(groups: list) -> list:
     return out
 
 
+def vertex_colour_stage(state: DrawState, obj, rgba):
+    """Vertex colours after lighting: depth cueing replaces them (depthcue(3G)), then
+    fog blends them (fogvertex(3G)).  ``rgba`` is returned as is when neither is on."""
+    if state.depthcue is not None:
+        rgba = cue_vertices(state.depthcue, obj, rgba, state.mvp, state.depth)
+    if state.fog is not None:
+        rgba = fog_vertices(state.fog, obj, rgba)
+    return rgba
+
+
 class PendingTriangles:
     """Triangle draws queued for one combined geometry pass.
 
@@ -154,6 +166,8 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
     """Vertex colours of one part through the lighting equation, with two-sided
     lighting's duplicated vertices: (obj, rgba, tris, prov)."""
     if cols is None or normals is None or state.lighting is None:
+        if cols is not None:
+            cols = vertex_colour_stage(state, obj, cols)
         return obj, cols, tris, prov
     rgba = shade_vertices(state, lmcolor_set, obj, normals, cols, lit)
     if state.lighting.lmodel.twoside:
@@ -167,7 +181,7 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
         rgba = np.concatenate([rgba, back_rgba])
         tris = np.where(backs[:, None], tris + n, tris)
         prov = np.where(backs, prov + n, prov)
-    return obj, rgba, tris, prov
+    return obj, vertex_colour_stage(state, obj, rgba), tris, prov
 
 
 def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
@@ -182,7 +196,7 @@ def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals
     (:func:`shade_groups`).
     """
     if lit_rgba is not None:
-        rgba = lit_rgba
+        rgba = vertex_colour_stage(state, obj, lit_rgba)  # two-sided is never batched
     else:
         obj, rgba, tris, prov = _lit_colours(state, lmcolor_set, obj, cols, normals, lit,
                                              tris, prov)
@@ -242,7 +256,8 @@ def commit_triangles(ctx) -> None:
     tris = joined(2)
     prov = joined(3)
     flat = None if (rgba is None or rs.shademodel != FLAT) else rgba[prov]
-    draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth), obj,
+    draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth,
+                                               state.user_planes), obj,
                    rgba, tris, flat, tri_states=tri_states)
 
 
@@ -287,7 +302,7 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
     litm = None
     if lighting:
         litm = np.ones(n, bool) if lit is None else np.asarray(lit, bool)
-    view = Viewing(state.mvp, state.viewport, state.depth)
+    view = Viewing(state.mvp, state.viewport, state.depth, state.user_planes)
     if kind not in (LINE, CLOSEDLINE, POINT):
         tris, prov = triangles_of(state, kind, n, obj, view, swaps, indices, provoking)
         if cols is not None and not private:
@@ -305,11 +320,12 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
                                   cols, litm)
         else:
             rgba = np.array(cols, dtype=np.float64)
+        rgba = vertex_colour_stage(state, obj, rgba)
     if kind in (LINE, CLOSEDLINE):
         segs = assembly.line_segments(n, kind == CLOSEDLINE)
-        starts, end = _pattern_starts(obj, segs, view)
-        draw_lines(ctx.raw_batch, rs, view, obj, rgba, segs, starts + int(pattern_offset))
-        ctx.linestyle_pos = int(pattern_offset) + end
+        # resetls(FALSE): the pattern continues from the last line drawn.
+        start = int(pattern_offset) if state.resetls else ctx.linestyle_pos
+        ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs, start)
         return
     draw_points(ctx.raw_batch, rs, view, obj, rgba)
 
@@ -334,23 +350,6 @@ def triangles_of(state: DrawState, kind, n, obj, view, swaps, indices, provoking
     else:
         raise ValueError(f"unknown primitive kind {kind!r}")
     return np.asarray(tris, np.int64).reshape(-1, 3), prov
-
-
-def _pattern_starts(obj, segs, view) -> tuple[np.ndarray, int]:
-    """Line-style position of each segment (it continues along a polyline), and
-    the position after the last segment."""
-    if segs.shape[0] == 0:
-        return np.zeros(0, np.int64), 0
-    clip = apply(obj, view.mvp)
-    w = np.where(clip[:, 3] == 0, 1e-30, clip[:, 3])
-    l, r, b, t = view.viewport
-    x = (clip[:, 0] / w + 1) * (r - l + 1) / 2
-    y = (clip[:, 1] / w + 1) * (t - b + 1) / 2
-    steps = np.maximum(np.abs(np.round(x[segs[:, 1]]) - np.round(x[segs[:, 0]])),
-                       np.abs(np.round(y[segs[:, 1]]) - np.round(y[segs[:, 0]])))
-    steps = np.nan_to_num(steps, nan=0.0, posinf=0.0, neginf=0.0).astype(np.int64)
-    total = np.cumsum(steps)
-    return np.concatenate([[0], total[:-1]]).astype(np.int64), int(total[-1])
 
 
 def _concave_triangles(obj, view) -> np.ndarray:

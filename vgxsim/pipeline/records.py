@@ -13,7 +13,11 @@ from typing import NamedTuple
 
 import numpy as np
 
+from vgxsim.kernels.clip import NO_PLANES
 from vgxsim.state.raster import RasterState, needs_colour
+
+from .depthcue import DepthCue
+from .fog import FogState
 
 
 class LightingState(NamedTuple):
@@ -50,6 +54,15 @@ class DrawState(NamedTuple):
         None when lighting is off (or in cmode).
     lmcolor_mode : int
     concave : bool
+    user_planes : ndarray, shape (K, 4), float64
+        The user clip planes on (clipplane(3G)), in clip space (``NO_PLANES``, one
+        shared object, when none is on).
+    fog : FogState or None
+        Vertex fog (fogvertex(3G)) when it is on in RGB mode, else None.
+    depthcue : DepthCue or None
+        The depth-cue ramp when depthcue(TRUE) in RGB mode, else None.
+    resetls : bool
+        Whether the line style restarts at each line (resetls(3G)).
     """
 
     raster: RasterState
@@ -59,6 +72,51 @@ class DrawState(NamedTuple):
     lighting: LightingState | None
     lmcolor_mode: int
     concave: bool
+    user_planes: np.ndarray = NO_PLANES
+    fog: FogState | None = None
+    depthcue: DepthCue | None = None
+    resetls: bool = True
+
+
+def fog_state(ctx) -> FogState | None:
+    """The window's vertex fog with the modelview it is measured in, or None."""
+    if not ctx.fog_on or ctx.fog_def is None or not ctx.config.rgb:
+        return None
+    return ctx.fog_def._replace(modelview=ctx.matrices.modelview_matrix())
+
+
+def same_fog(a: FogState | None, b: FogState | None) -> bool:
+    if a is None or b is None:
+        return a is b
+    return a[:5] == b[:5] and a.modelview is b.modelview
+
+
+def clip_space_planes(ctx) -> np.ndarray:
+    """The window's user clip planes that are on, in clip space: (K, 4) float64.
+
+    A plane is kept in eye coordinates (transformed by the modelview when it was
+    defined, clipplane(3G)); a clip-space point ``c = e @ P`` is inside where
+    ``e . q >= 0``, i.e. ``c . (P^-1 q) >= 0`` (OpenGL and Mesa clip user planes in
+    clip space the same way).  In MSINGLE the single matrix is the projection and eye
+    space is object space (the modelview is the identity there).
+    """
+    eye = ctx.user_planes
+    if eye.shape[0] == 0:
+        return NO_PLANES
+    m = ctx.matrices
+    proj = m.modelview[-1] if m.mode == 0 else m.projection  # MSINGLE: the single matrix
+    try:
+        inv = np.linalg.inv(proj)
+    except np.linalg.LinAlgError:
+        inv = np.linalg.pinv(proj)
+    out = np.ascontiguousarray((inv @ eye.T).T)
+    out.flags.writeable = False
+    return out
+
+
+def same_planes(a: np.ndarray, b: np.ndarray) -> bool:
+    """Whether two records clip against the same user planes."""
+    return a is b or (a.shape == b.shape and bool(np.array_equal(a, b)))
 
 
 def lighting_state(ctx) -> LightingState | None:
@@ -89,7 +147,9 @@ def same_state(a: DrawState, b: DrawState) -> bool:
         return True
     return (a.raster is b.raster and a.mvp is b.mvp and a.viewport == b.viewport
             and a.depth == b.depth and a.lmcolor_mode == b.lmcolor_mode
-            and a.concave == b.concave and same_lighting(a.lighting, b.lighting))
+            and a.concave == b.concave and same_lighting(a.lighting, b.lighting)
+            and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
+            and a.depthcue == b.depthcue and a.resetls == b.resetls)
 
 
 def same_geometry(a: DrawState, b: DrawState) -> bool:
@@ -101,7 +161,9 @@ def same_geometry(a: DrawState, b: DrawState) -> bool:
             and a.lmcolor_mode == b.lmcolor_mode and a.concave == b.concave
             and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
             and needs_colour(ra) == needs_colour(rb)
-            and same_lighting(a.lighting, b.lighting))
+            and same_lighting(a.lighting, b.lighting)
+            and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
+            and a.depthcue == b.depthcue and a.resetls == b.resetls)
 
 
 def same_projection(a: DrawState, b: DrawState) -> bool:
@@ -111,7 +173,8 @@ def same_projection(a: DrawState, b: DrawState) -> bool:
     ra, rb = a.raster, b.raster
     return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
             and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
-            and needs_colour(ra) == needs_colour(rb))
+            and needs_colour(ra) == needs_colour(rb)
+            and same_planes(a.user_planes, b.user_planes))
 
 
 class StateTable:
@@ -129,12 +192,14 @@ class StateTable:
 
     def intern(self, ctx) -> int:
         """Index of the window's current draw state (one record per distinct value:
-        the key holds the identities of its immutable parts and the lighting
-        serial, which every lighting call bumps)."""
+        the key holds the identities of its immutable parts, the lighting
+        serial, which every lighting call bumps, and the vertex-stage serial, which
+        every clipplane and fogvertex call bumps)."""
         rs = ctx.raster.snapshot()
         mvp = ctx.matrices.mvp()
         key = (id(rs), id(mvp), ctx.raster.viewport, ctx.depth_range, ctx.lighting_serial,
-               ctx.lmcolor_mode, ctx.concave, ctx.config.rgb, id(ctx.bound["lights"]))
+               ctx.lmcolor_mode, ctx.concave, ctx.config.rgb, id(ctx.bound["lights"]),
+               ctx.vertex_serial)
         idx = self._index.get(key)
         if idx is not None and self.records[idx].raster is rs and self.records[idx].mvp is mvp:
             return idx
@@ -145,7 +210,9 @@ class StateTable:
     def _new(self, ctx) -> int:
         rec = DrawState(ctx.raster.snapshot(), ctx.matrices.mvp(), ctx.raster.viewport,
                         ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
-                        bool(ctx.concave))
+                        bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
+                        ctx.depthcue if ctx.depthcue_on and ctx.config.rgb else None,
+                        bool(getattr(ctx, "resetls", True)))
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1

@@ -218,7 +218,8 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
            size: tuple[int, int] = (640, 512), light: int = 0, soft: int | str = 0,
            seed: int = 1991, edges: str = "silhouette", subpixel: bool = False,
            display_objects: bool = True, signs: str = "screen",
-           on_soft_frame: Callable[[int, np.ndarray], None] | None = None) -> Frame:
+           on_soft_frame: Callable[[int, np.ndarray], None] | None = None,
+           technique=None, technique_options: dict | None = None) -> Frame:
     """Render one frame of the ``shadows`` program in a window of its own.
 
     Parameters
@@ -248,6 +249,14 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
     on_soft_frame : callable, optional
         ``on_soft_frame(n, colour)`` with the running average (H, W, 4) uint8, top
         row first, after each of the ``n`` soft-shadow frames.
+    technique : str or vgxsim.shadow.techniques.Technique, optional
+        A shadow technique for the 'shadows' mode (:data:`vgxsim.shadow.techniques.
+        TECHNIQUES`: 'heidmann', 'zfail', 'auto', 'zpplus', 'counting', 'finite',
+        'roettger', 'shadowmap'); None: the 1991 code as printed.  ``Frame.stencil``
+        then holds the technique's mask plane (stencil, or alpha for 'roettger' and
+        'shadowmap') and ``Frame.stencil_zero`` its lit value.
+    technique_options : dict, optional
+        Keyword options of the named technique (e.g. ``{"size": 1024}``).
 
     Returns
     -------
@@ -262,13 +271,15 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
     return _render_views(scene, [scene.camera], mode=mode, size=size, light=light, soft=soft,
                          seed=seed, edges=edges, subpixel=subpixel,
                          display_objects=display_objects, signs=signs,
-                         on_soft_frame=on_soft_frame)[0]
+                         on_soft_frame=on_soft_frame, technique=technique,
+                         technique_options=technique_options)[0]
 
 
 def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
                   size: tuple[int, int], light: int, soft: int | str, seed: int, edges: str,
                   subpixel: bool, display_objects: bool, signs: str,
-                  on_soft_frame: Callable[[int, np.ndarray], None] | None) -> list[Frame]:
+                  on_soft_frame: Callable[[int, np.ndarray], None] | None,
+                  technique=None, technique_options: dict | None = None) -> list[Frame]:
     """One window, one program set-up, one frame per camera (display objects made once)."""
     from vgxsim.gl import (
         TRUE,
@@ -286,13 +297,19 @@ def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
 
     frames = _frames_for(soft)
     planes: dict[int, np.ndarray] = {}
+    tech = None
+    if technique is not None:
+        from .techniques import make
+
+        tech = make(technique, **(technique_options or {}))
 
     def hook(i: int) -> None:
-        planes[i] = read_pixels("back", "stencil")[::-1]
+        plane = tech.read_mask(prog, i) if tech is not None else read_pixels("back", "stencil")
+        planes[i] = plane[::-1]
 
     w, h = (int(v) for v in size)
     prog = Shadows(scene, mode=mode, edges=edges, light=light, display_objects=display_objects,
-                   signs=signs, stencil_hook=hook if frames == 0 else None)
+                   signs=signs, stencil_hook=hook if frames == 0 else None, technique=tech)
     previous = session.current
     prefsize(w, h)
     gid = winopen("shadows")
@@ -322,7 +339,8 @@ def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
             swapbuffers()
             colour = read_pixels("front")[::-1].copy()
             depth = read_pixels("front", "z")[::-1].copy()
-            zero = prog.MYZERO if mode != "mask" else (
+            zero = tech.lit_value(prog) if tech is not None and mode == "shadows" else (
+                prog.MYZERO) if mode != "mask" else (
                 (1 << (prog.stencil_bits - 1)) | (1 << (prog.stencil_bits - 2)))
             stencil = (np.stack([planes[i] for i in sorted(planes)]) if planes
                        else np.zeros((0, h, w), np.uint8))
@@ -355,7 +373,7 @@ def render_spin(scene: Scene | None, frames: int, **kw) -> list[np.ndarray]:
         raise ValueError(f"frames must be >= 1, not {frames}")
     opts = dict(mode="shadows", size=(640, 512), light=0, soft=0, seed=1991,
                 edges="silhouette", subpixel=False, display_objects=True, signs="screen",
-                on_soft_frame=None)
+                on_soft_frame=None, technique=None, technique_options=None)
     opts.update(kw)
     cams = [orbit(scene.camera, rotate=(360.0 * k / frames, 0.0)) for k in range(frames)]
     with warnings.catch_warnings():
@@ -364,10 +382,11 @@ def render_spin(scene: Scene | None, frames: int, **kw) -> list[np.ndarray]:
 
 
 def write_image(path: str | os.PathLike, colour: np.ndarray) -> None:
-    """Write an (H, W, 4) or (H, W, 3) uint8 image, top row first, atomically, as RGB
-    (the format follows the suffix: .png, .jpg, .rgb ...)."""
-    from vgxsim.formats.atomic import atomic_path
-
+    """Write an (H, W, 4) or (H, W, 3) uint8 image, top row first, atomically, as RGB;
+    the format follows the suffix (.png, .jpg/.jpeg, .tif/.tiff through
+    :func:`vgxsim.sinks.images.write_image`; .rgb/.sgi as an SGI image), any other
+    suffix is refused.  An existing file is replaced (the command line checks
+    ``--overwrite`` before it renders)."""
     rgb = np.ascontiguousarray(np.asarray(colour, np.uint8)[..., :3])
     path = os.fspath(path)
     if path.lower().endswith((".rgb", ".sgi")):
@@ -375,20 +394,19 @@ def write_image(path: str | os.PathLike, colour: np.ndarray) -> None:
 
         write_rgb(path, rgb)
         return
-    import imageio.v3 as iio
+    from vgxsim.sinks.images import write_image as write_any
 
-    with atomic_path(path) as tmp:
-        iio.imwrite(tmp, rgb)
+    write_any(path, rgb, overwrite=True)
 
 
 def write_animation(path: str | os.PathLike, frames: Sequence[np.ndarray],
                     fps: float = 15.0) -> None:
     """Write frames (each (H, W, 4) uint8, top row first) as .gif or .mp4, atomically."""
-    from vgxsim.formats.atomic import atomic_path
+    from vgxsim.sinks.atomic import atomic_path
     from vgxsim.sinks.frames import VideoSink
 
     with atomic_path(path) as tmp:
-        sink = VideoSink(tmp, fps=fps)
+        sink = VideoSink(tmp, fps=fps, overwrite=True)  # tmp: atomic_path's own new file
         for img in frames:
             sink.write(np.ascontiguousarray(img[::-1]))  # sinks take framebuffer order
         sink.close()

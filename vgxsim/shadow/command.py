@@ -8,12 +8,25 @@ images from a shell script" (README) are what remains here, headless::
                    [--light N] [--soft [N|figure6]] [--soft-max N] [--seed N]
                    [--rotate AZ,EL] [--translate X,Y] [--dolly D] [--spin N] [--fps F]
                    [--subpixel on|off] [--edges silhouette|all] [--signs screen|article]
+                   [--technique NAME] [--option KEY=VALUE ...]
+                   [--scheduler ADDRESS | --local] [--workers N]
+    vgxsim shadows [SCENE] --window [--record DIR|FILE] [--record-events FILE] [options]
+    vgxsim shadows [SCENE] --events FILE [--record DIR|FILE] [options]
     vgxsim convert MESH OUT [-f] [--normals none|face|vertex]
+
+``--window`` runs the original's interactive program (trackball, translate, dolly,
+spin, the right-button menu of display modes and soft shadows;
+``vgxsim/examples/shadows_interactive.py``) in a real window, starting in "Show Objects
+Only" as the original did; ``--record-events`` writes the session's input, and
+``--events FILE`` plays such a script to the same program headless (``--record`` the
+frames of either).
 
 SCENE is a ``.scn`` file or the name of a shipped scene (cubes, balls,
 textured_floor, dense, teapot); without it, the three cubes.  Errors in a scene or
 model name the file and line and exit with status 1; nothing is written then.
-Outputs are written atomically.
+Outputs are written atomically.  ``--spin`` and ``--soft`` run as Dask tasks
+(:mod:`vgxsim.farm`: an embedded LocalCluster, or ``--scheduler``; the same pixels);
+``--local`` keeps them in this process, with the soft shadows' intermediate images.
 """
 
 from __future__ import annotations
@@ -73,9 +86,9 @@ def add_parsers(sub, size_type, positive_int) -> None:
                     help="output image (default shadows.png; with --spin spin.gif)")
     sh.add_argument("--size", type=size_type, default=(640, 512), metavar="WxH",
                     help="image size (default 640x512)")
-    sh.add_argument("--mode", choices=MODES, default="shadows",
+    sh.add_argument("--mode", choices=MODES, default=None,
                     help="display mode (README: Show Objects Only / Volumes / Mask / "
-                         "Shadows; default shadows)")
+                         "Shadows; default shadows, interactive: objects)")
     sh.add_argument("--light", type=int, default=0, metavar="N",
                     help="the light whose volumes and mask are shown (default 0)")
     sh.add_argument("--soft", type=_soft, nargs="?", const="max", default=None,
@@ -104,8 +117,30 @@ def add_parsers(sub, size_type, positive_int) -> None:
     sh.add_argument("--signs", choices=SIGNS, default="screen",
                     help="INCR/DECR per face from the rasterizer's facing (screen, default) "
                          "or the article's 3-D test (article)")
+    from .techniques import TECHNIQUES
+
+    sh.add_argument("--technique", choices=tuple(TECHNIQUES), default=None,
+                    help="a shadow technique since 1991 for the shadows mode (default: the "
+                         "1991 code as printed)")
+    sh.add_argument("--option", action="append", default=[], metavar="KEY=VALUE",
+                    help="an option of the technique, e.g. --option size=1024 (numbers, "
+                         "true/false and none are converted)")
     sh.add_argument("--no-cache", action="store_true",
                     help="rebuild model adjacency instead of using the cache")
+    sh.add_argument("--overwrite", action="store_true",
+                    help="replace an existing output file or earlier recording (without "
+                         "it, one is refused before anything is drawn)")
+    from vgxsim.farm.command import add_scheduler_options
+
+    add_scheduler_options(sh)  # where --spin frames and --soft samples run
+    from vgxsim.cli import add_window_options
+
+    add_window_options(sh)
+    sh.add_argument("--events", metavar="FILE",
+                    help="run the interactive program headless with this events script "
+                         "(e.g. one written by --record-events)")
+    sh.add_argument("--timeout", type=float, default=None, metavar="SECONDS",
+                    help="with --window or --events: end the session after SECONDS")
 
     cv = sub.add_parser(
         "convert", help="convert a mesh (OBJ, STL, PLY, OFF, GLB, .glo) to .glo or a cache",
@@ -119,6 +154,8 @@ def add_parsers(sub, size_type, positive_int) -> None:
     cv.add_argument("--normals", choices=("none", "face", "vertex"), default="none",
                     help="normals to store in the .glo (default none: one per polygon, "
                          "computed when drawn)")
+    cv.add_argument("--overwrite", action="store_true",
+                    help="replace an existing OUT (without it, one is refused)")
 
 
 def _progress(total: int):
@@ -128,9 +165,83 @@ def _progress(total: int):
     return tqdm(total=total, desc="soft shadows", unit="frame", disable=None, file=sys.stderr)
 
 
+def run_interactive(ns: argparse.Namespace) -> int:
+    """``vgxsim shadows --window`` / ``--events``: the interactive program through the
+    runner (on screen, or headless from a script)."""
+    from vgxsim.cli import window_problem
+    from vgxsim.events import ScriptError
+    from vgxsim.runner import run_program
+    from vgxsim.sinks import SinkError
+
+    prog = "vgxsim shadows"
+    problem = window_problem(ns)
+    if problem is not None:
+        print(f"{prog}: {problem}", file=sys.stderr)
+        return 2
+    if ns.events is not None and not os.path.isfile(ns.events):
+        print(f"{prog}: no such event script: {ns.events}", file=sys.stderr)
+        return 2
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    program = os.path.join(here, "examples", "shadows_interactive.py")
+    args = [*([ns.scene] if ns.scene else []), "--mode", ns.mode or "objects",
+            "--seed", str(ns.seed), "--edges", ns.edges, "--signs", ns.signs,
+            "--soft-max", str(ns.soft_max if ns.soft in (None, "max") else
+                              min(ns.soft_max, api_frames(ns.soft)))]
+    if ns.soft is not None:
+        args.append("--soft")
+    try:
+        return run_program(program, args, events=ns.events, frames=ns.record, size=ns.size,
+                           timeout=ns.timeout, overwrite=ns.overwrite, window=ns.window,
+                           record_events=ns.record_events)
+    except ScriptError as exc:
+        print(f"{prog}: bad event script: {exc}", file=sys.stderr)
+        return 2
+    except (SinkError, ImportError, ValueError) as exc:
+        print(f"{prog}: cannot record: {exc}", file=sys.stderr)
+        return 2
+
+
+def api_frames(soft) -> int:
+    from .api import _frames_for
+
+    return _frames_for(soft)
+
+
+def _technique_options(items: list[str]) -> dict:
+    """``KEY=VALUE`` strings to keyword options (int, float, bool, None or str)."""
+    out: dict = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep or not key:
+            raise ValueError(f"expected KEY=VALUE, got {item!r}")
+        low = text.lower()
+        value: object = text
+        if low in ("true", "false"):
+            value = low == "true"
+        elif low == "none":
+            value = None
+        else:
+            for conv in (int, float):
+                try:
+                    value = conv(text)
+                    break
+                except ValueError:
+                    pass
+        out[key] = value
+    return out
+
+
 def run_shadows(ns: argparse.Namespace) -> int:
     """Carry out ``vgxsim shadows``; returns the exit status."""
     from dataclasses import replace
+
+    if ns.window or ns.events is not None or ns.record_events is not None:
+        return run_interactive(ns)
+    if ns.record is not None:
+        print("vgxsim shadows: --record records a --window or --events session (-o names "
+              "the headless image)", file=sys.stderr)
+        return 2
+    ns.mode = ns.mode or "shadows"
 
     from vgxsim.formats import FormatError
 
@@ -148,6 +259,10 @@ def run_shadows(ns: argparse.Namespace) -> int:
     folder = os.path.dirname(os.path.abspath(out))
     if not os.path.isdir(folder):
         print(f"{prog}: the output folder {folder} does not exist", file=sys.stderr)
+        return 2
+    problem = _output_problem(out, ns.overwrite)
+    if problem:
+        print(f"{prog}: {problem}", file=sys.stderr)
         return 2
     try:
         scene = api.load_scene(ns.scene, use_cache=not ns.no_cache)
@@ -167,17 +282,37 @@ def run_shadows(ns: argparse.Namespace) -> int:
         if not any(lt.jitterable for lt in scene.lights):
             print(f"{prog}: note: no light of this scene has JITTER, so soft shadows look "
                   "hard", file=sys.stderr)
+    try:
+        options = _technique_options(ns.option)
+    except ValueError as exc:
+        print(f"{prog}: --option: {exc}", file=sys.stderr)
+        return 2
     kw = dict(mode=ns.mode, size=ns.size, light=ns.light, seed=ns.seed, edges=ns.edges,
               subpixel=ns.subpixel, signs=ns.signs)
+    if ns.technique is not None:
+        from .techniques import TechniqueError, make
+
+        try:
+            make(ns.technique, **options)
+        except TechniqueError as exc:
+            print(f"{prog}: --technique {ns.technique}: {exc}", file=sys.stderr)
+            return 2
+        kw.update(technique=ns.technique, technique_options=options)
+    farmed = bool(ns.spin or soft) and not ns.local
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", api.ViewpointInShadowWarning)
+            if farmed:  # vgxsim.farm: the same arrays, computed as Dask tasks
+                from vgxsim.farm.command import run_farmed_shadows
+
+                result = run_farmed_shadows(ns, scene, soft, kw)
             if ns.spin:
-                frames = api.render_spin(scene, ns.spin, soft=soft, **kw)
+                frames = result if farmed else api.render_spin(scene, ns.spin, soft=soft,
+                                                               **kw)
                 api.write_animation(out, frames, ns.fps)
                 what = f"{ns.spin} frames"
             else:
-                bar = _progress(soft) if soft else None
+                bar = _progress(soft) if soft and not farmed else None
                 checkpoints = {1 << k for k in range(16)}
 
                 def intermediate(n: int, colour) -> None:
@@ -187,8 +322,8 @@ def run_shadows(ns: argparse.Namespace) -> int:
                         api.write_image(out, colour)
 
                 try:
-                    frame = api.render(scene, soft=soft,
-                                       on_soft_frame=intermediate if soft else None, **kw)
+                    frame = result if farmed else api.render(
+                        scene, soft=soft, on_soft_frame=intermediate if soft else None, **kw)
                 finally:
                     if bar is not None:
                         bar.close()
@@ -207,11 +342,29 @@ def run_shadows(ns: argparse.Namespace) -> int:
     return 0
 
 
+def _output_problem(path: str, overwrite: bool) -> str | None:
+    """Why ``path`` cannot be written (the rule of every vgxsim output: an existing
+    file is replaced only with --overwrite; the target is tried before any work),
+    or None."""
+    from vgxsim.sinks import SinkError
+    from vgxsim.sinks.images import check_writable_file
+
+    try:
+        check_writable_file(path, overwrite)
+    except SinkError as exc:
+        return str(exc).replace("(overwrite=True) ", "")
+    return None
+
+
 def run_convert(ns: argparse.Namespace) -> int:
     """Carry out ``vgxsim convert``; returns the exit status."""
     from vgxsim.formats import FormatError
     from vgxsim.formats.convert import convert
 
+    problem = _output_problem(ns.out, ns.overwrite)
+    if problem:
+        print(f"vgxsim convert: {problem}", file=sys.stderr)
+        return 2
     try:
         model = convert(ns.mesh, ns.out, flip=ns.flip, normals=ns.normals)
     except FormatError as exc:

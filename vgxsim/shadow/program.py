@@ -108,6 +108,9 @@ class Shadows:
     display_objects : bool
         Draw objects from display objects (True) or in immediate mode (False); both
         issue the same polygons.
+    technique : vgxsim.shadow.techniques.Technique, optional
+        Not the article: a later shadow technique that draws the 'shadows' mode
+        through this engine (:mod:`vgxsim.shadow.techniques`); None: the 1991 code.
     signs : {'article', 'screen'}
         How a shadow face's stencil op is chosen.  'article': from the 3-D test
         ``ingoing`` (article: "front-facing polygons will be going into shadow"),
@@ -125,7 +128,7 @@ class Shadows:
                  edges: str = "silhouette", faithful: bool = False,
                  stencil_hook: Callable[[int], None] | None = None,
                  effective_zclear: bool = False, *, light: int = 0,
-                 display_objects: bool = True, signs: str = "article"):
+                 display_objects: bool = True, signs: str = "article", technique=None):
         if mode not in MODES:
             raise ValueError(f"mode must be one of {MODES}, not {mode!r}")
         if edges not in EDGES:
@@ -133,6 +136,7 @@ class Shadows:
         if signs not in SIGNS:
             raise ValueError(f"signs must be one of {SIGNS}, not {signs!r}")
         self.signs = signs
+        self.technique = technique
         self.scene = scene if scene is not None else default_scene()
         if not 0 <= light < len(self.scene.lights):
             raise ValueError(f"light must be 0..{len(self.scene.lights) - 1}, not {light}")
@@ -155,6 +159,8 @@ class Shadows:
         """Frame-buffer configuration: the article's first lines, after RGBmode and
         doublebuffer on the window just opened (``acsize(16)`` too for soft
         shadows)."""
+        if self.technique is not None and self.technique.config(self, accumulate):
+            return                                    # (the technique configured the planes)
         RGBmode()
         doublebuffer()
         if getgdesc(GD_BITS_STENCIL) == 0:            # /* This requires stencil hardware. */
@@ -203,6 +209,8 @@ class Shadows:
         loadmatrix(np.eye(4).reshape(-1).tolist())
         lookat(*cam.eye, *cam.target, cam.twist)
         lmbind(LMODEL, 1)
+        if self.technique is not None:               # e.g. an infinite far plane (z-fail)
+            self.technique.after_viewing(self)
 
     def setup(self, accumulate: bool = False) -> None:
         """Everything before the first frame, on the current window."""
@@ -215,6 +223,8 @@ class Shadows:
         for obj in self._geometry.values():
             delobj(obj)
         self._geometry.clear()
+        if self.technique is not None:
+            self.technique.teardown(self)
 
     # -- drawing ---------------------------------------------------------------------
     def draw_polygons(self, obj) -> None:
@@ -279,6 +289,9 @@ class Shadows:
 
     def draw_shadows(self) -> None:
         """The article's code segment ("Show Shadows")."""
+        if self.technique is not None:                # (not in the article: a later
+            self.technique.draw_shadows(self)         #  technique, same engine)
+            return
         nLights, light, DrawObjects = self.nLights, self.light, self.DrawObjects
         MYZERO = self.MYZERO                          # (the article's constant; see config)
         # /* Draw scene w/ ambient light, setting z-buffer. */

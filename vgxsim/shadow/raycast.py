@@ -18,13 +18,15 @@ BVH, :mod:`vgxsim.kernels.bvh`):
 * the **visible triangle**: the nearest scene triangle with ``0 <= t <= 1`` (equal t:
   the lowest index), its object and world point;
 * per light, **lit**: the segment from the visible point P to the light meets no
-  caster triangle other than P's own, leaving out the first and last
-  ``eps * R`` world units of it (R: the scene's radius about the origin, at least 1;
-  about 1e-6 units for the default scene) -- the definition of a hard shadow
-  (article: "The volume of space behind the triangle ... is in shadow").  Point and
-  spot lights use their position (a spot's cone limits its light, not its shadow); a
-  directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a direction toward
-  the light) uses ``L = P + (4 R + 1) * unit(direction)``, beyond every caster;
+  caster triangle other than P's own, leaving out the first and last ``offset``
+  world units of it (:func:`segment_scales`: ``eps`` times the scene's size plus
+  1e-13 times its largest coordinate, so a scene moved far from the origin keeps
+  its shadows; 2e-6 units for the default scene) -- the definition of a hard
+  shadow (article: "The volume of space behind the triangle ... is in shadow").
+  Point and spot lights use their position (a spot's cone limits its light, not its
+  shadow); a directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a
+  direction toward the light) uses ``L = P + far * unit(direction)``, ``far``
+  reaching past every caster;
 * per light, **occluders**: how many distinct caster objects that segment crosses;
 * per light, **layers**: how many light-facing caster triangles it crosses (facing:
   ``N . (L - v0) > 0``, as :meth:`Polyhedron.facing`; ``N . direction > 0`` for
@@ -82,15 +84,16 @@ import numpy as np
 
 from vgxsim import threads as _threads
 from vgxsim.geometry.pipeline import GUARD_PIXELS, to_clip
-from vgxsim.kernels.bvh import BVH, build_bvh
-from vgxsim.kernels.clip import COORD_LIMIT, ONE, clip_triangles, project_snap, snap_window
-from vgxsim.kernels.raycast import (
-    Window,
-    closest_hits,
-    count_crossings,
-    no_window,
-    shadow_segments,
+from vgxsim.kernels.bvh import BVH, build_arrays, split_references
+from vgxsim.kernels.clip import (
+    COORD_LIMIT,
+    NO_PLANES,
+    ONE,
+    clip_triangles,
+    project_snap,
+    snap_window,
 )
+from vgxsim.kernels.raycast import Window, closest_hits, count_crossings, shadow_segments
 
 from .scene import Scene, shadow_faces
 
@@ -378,7 +381,7 @@ def _rasterized(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
     hx, hy = width / 2.0, height / 2.0
     gx, gy = max(1.0, GUARD_PIXELS / hx), max(1.0, GUARD_PIXELS / hy)  # as the pipeline
     out_v, _, out_tris, out_src = clip_triangles(
-        clip, np.zeros((n, 0)), np.arange(n, dtype=np.int64).reshape(-1, 3), gx, gy)
+        clip, np.zeros((n, 0)), np.arange(n, dtype=np.int64).reshape(-1, 3), gx, gy, NO_PLANES)
     xf, yf, _ = project_snap(np.ascontiguousarray(out_v), 0, width - 1, 0, height - 1,
                              -1.0, 1.0, bool(subpixel))
     w = out_v[:, 3]
@@ -425,14 +428,43 @@ def run_bands(kernel, n: int, nthreads: int, *args) -> None:
         f.result()
 
 
+def no_window() -> Window:
+    """A :data:`vgxsim.kernels.raycast.Window` that tests every triangle in 3-D."""
+    return Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
+                  np.zeros(0, np.bool_))
+
+
+def build_bvh(tris4: np.ndarray, usable: np.ndarray | None = None, *, leaf_size: int = 4,
+              sah: bool = True, max_extent: float = 0.0,
+              region: tuple[np.ndarray, np.ndarray] | None = None,
+              max_pieces: int = 64) -> BVH:
+    """A :data:`vgxsim.kernels.bvh.BVH` over the usable triangles.
+
+    ``max_extent`` > 0 cuts long triangles into pieces inside ``region`` (default:
+    everywhere), see :func:`vgxsim.kernels.bvh.split_references`; ``sah`` and
+    ``leaf_size`` as :func:`vgxsim.kernels.bvh.build_arrays`.
+    """
+    tris4 = np.ascontiguousarray(tris4, dtype=np.float64)
+    if usable is None:
+        usable = np.ones(tris4.shape[0], dtype=np.bool_)
+    if region is None:
+        region = (np.full(3, -np.inf), np.full(3, np.inf))
+    ref, lo, hi = split_references(tris4, np.ascontiguousarray(usable, dtype=np.bool_),
+                                   float(max_extent), np.asarray(region[0], np.float64),
+                                   np.asarray(region[1], np.float64), int(max_pieces))
+    return BVH(*build_arrays(tris4, ref, lo, hi, int(leaf_size), bool(sah)))
+
+
 def scene_bvh(tris4: np.ndarray, keep: np.ndarray | None = None, *, sah: bool = True,
               split_within: np.ndarray | None = None) -> BVH:
     """A BVH over the usable triangles of ``tris4`` (and ``keep``), caller-indexed.
 
     ``split_within`` (shape (2, 3): a box) cuts triangles into pieces no longer than
-    1/32 of the box's diagonal inside it (:func:`vgxsim.kernels.bvh.split_references`):
-    long shadow faces otherwise overlap every eye ray's box tests (measured on 20
-    icospheres at 320 x 256: 7.4 s uncut, see bench/raycast.py).
+    1/64 of the box's diagonal inside it, at most 256 per triangle
+    (:func:`vgxsim.kernels.bvh.split_references`): long shadow faces otherwise
+    overlap every eye ray's box tests.  Measured on 20 icospheres (8.5 k faces):
+    crossings at 320 x 256 took 7.4 s uncut and 0.72 s cut at 1/32; at 640 x 512,
+    1/16: 1.25, 1/32: 0.96, 1/64: 0.79, 1/128: 0.79 CPU seconds.
     """
     usable = usable_triangles(tris4)
     if keep is not None:
@@ -440,8 +472,8 @@ def scene_bvh(tris4: np.ndarray, keep: np.ndarray | None = None, *, sah: bool = 
     if split_within is None:
         return build_bvh(tris4, usable, sah=sah)
     lo, hi = np.asarray(split_within[0], float), np.asarray(split_within[1], float)
-    return build_bvh(tris4, usable, sah=sah, max_extent=float(np.linalg.norm(hi - lo)) / 32,
-                     region=(lo, hi))
+    return build_bvh(tris4, usable, sah=sah, max_extent=float(np.linalg.norm(hi - lo)) / 64,
+                     region=(lo, hi), max_pieces=256)
 
 
 # --------------------------------------------------------------------------------------
@@ -475,6 +507,36 @@ def nearest_hit(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray,
     n = _threads.get_threads() if threads is None else int(threads)
     run_bands(closest_hits, len(o), n, bvh, no_window(), o, d, 0.0, float(tmax), (idx, t))
     return idx, t
+
+
+def segment_scales(tris4: np.ndarray, eye, eps: float) -> tuple[float, float]:
+    """Offset at both ends of a shadow segment, and the length of a directional one.
+
+    With D the diagonal of the scene's bounding box and M its largest |coordinate|:
+    ``offset = eps * D + 1e-13 * M`` (the first term keeps a receiver from
+    shadowing itself at any scale, the second stays above float64 rounding of
+    coordinates near M), and ``far = 2 (D + |eye - centre|) + 1``, longer than any
+    way from the eye or a scene point to a caster.
+
+    Parameters
+    ----------
+    tris4 : ndarray, shape (T, 3, 4), float64
+        Scene triangles (finite).
+    eye : array_like, shape (3,)
+    eps : float
+
+    Returns
+    -------
+    offset, far : float
+    """
+    pts = tris4[..., :3].reshape(-1, 3)
+    if len(pts) == 0:
+        return 0.0, 1.0
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    diag = float(np.linalg.norm(hi - lo))
+    big = float(np.abs(pts).max())
+    reach = float(np.linalg.norm(np.asarray(eye, np.float64) - 0.5 * (lo + hi)))
+    return float(eps) * diag + 1e-13 * big, 2.0 * (diag + reach) + 1.0
 
 
 def _light_facing(tris4: np.ndarray, light: np.ndarray) -> np.ndarray:
@@ -514,7 +576,7 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
         ignored when ``faces`` is given.
     eps : float
         Shadow segments from the hit point P to the light count no blocker within
-        ``eps * R`` of either end (R: the scene's radius about the origin, >= 1).
+        ``offset`` of either end (:func:`segment_scales`).
     subpixel : bool, optional
         None: exact geometry.  False / True: vertices snapped as the rasterizer does
         under ``subpixel(FALSE)`` / ``subpixel(TRUE)``.
@@ -591,10 +653,7 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     layer_w = np.zeros((nl, len(tris4)), np.int64)
     for li in range(nl):
         layer_w[li] = caster & _light_facing(tris4, lights[li])
-    radius = float(np.sqrt(3.0) * max(1.0, np.abs(tris4[..., :3]).max(initial=0.0),
-                                       np.abs(np.asarray(cam.eye)).max()))
-    far = 4.0 * radius + 1.0
-    offset = float(eps) * radius
+    offset, far = segment_scales(tris4, cam.eye, eps)
     blocked = np.zeros((n, nl), bool)
     occl = np.zeros((n, nl), np.int64)
     layers = np.zeros((n, nl), np.int64)

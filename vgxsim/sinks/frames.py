@@ -33,6 +33,7 @@ from os import PathLike
 
 import numpy as np
 
+from vgxsim.sinks.atomic import TEMPORARY
 from vgxsim.sinks.images import (
     SinkError,
     check_writable_file,
@@ -257,7 +258,7 @@ class PNGSequenceSink(FrameSink):
         """Frame files in the folder named as this sink (or a window's) names them,
         and the temporary files of frames a killed run was writing."""
         name = rf"(win\d+_)?{re.escape(self.prefix)}\d+\.png"
-        pattern = re.compile(rf"{name}|\.{name}\.\d+\.\d+\.tmp")
+        pattern = re.compile(rf"{name}|{TEMPORARY.format(name=name)}")
         with os.scandir(self.directory) as entries:
             return sorted(e.path for e in entries if pattern.fullmatch(e.name))
 

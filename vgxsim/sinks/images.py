@@ -20,6 +20,8 @@ from os import PathLike
 
 import numpy as np
 
+from vgxsim.sinks.atomic import atomic_path
+
 __all__ = ["IMAGE_FORMATS", "SinkError", "write_image", "image_format",
            "check_writable_file", "check_writable_folder", "atomic_write"]
 
@@ -106,22 +108,14 @@ def check_writable_file(path: str, overwrite: bool) -> None:
 
 
 def atomic_write(path: str, write) -> None:
-    """Call ``write(fh)`` on a temporary file beside ``path``, then rename it to
-    ``path``; on any failure the temporary file is removed and ``path`` is as before."""
-    folder, name = os.path.split(os.path.abspath(path))
-    tmp = os.path.join(folder, f".{name}.{os.getpid()}.{next(_tmp_counter)}.tmp")
+    """Call ``write(fh)`` on a temporary file beside ``path`` (named by
+    :func:`vgxsim.sinks.atomic.atomic_path`), then rename it to ``path``; any failure
+    leaves ``path`` as before and raises SinkError naming it."""
     try:
-        with open(tmp, "xb") as fh:
+        with atomic_path(path) as tmp, open(tmp, "xb") as fh:
             write(fh)
-        os.replace(tmp, path)
-    except BaseException as exc:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        if isinstance(exc, Exception):
-            raise SinkError(f"cannot write {path}: {_reason(exc)}") from exc
-        raise
+    except Exception as exc:
+        raise SinkError(f"cannot write {path}: {_reason(exc)}") from exc
 
 
 def write_image(path: str | PathLike, top_down: np.ndarray, *, overwrite: bool = True

@@ -36,7 +36,7 @@ class CommandStream:
     colour, normal, sent, lmcolor_set : object
         The immediate-mode attributes the stream last received (compared by
         identity with the window's current ones before each vertex).
-    raster, mvp, depth, lighting_serial, concave : object
+    raster, mvp, depth, lighting_serial, concave, vertex_serial : object
         The draw state the last STATE op recorded (compared by identity at bgn*).
     open_ops, open_fl : int
         Where the open primitive's BGN starts (a flush while a primitive is open
@@ -57,6 +57,7 @@ class CommandStream:
         """Make the next vertex and the next bgn* record attributes and state anew."""
         self.colour = self.normal = self.sent = self.lmcolor_set = None
         self.raster = self.mvp = self.depth = self.lighting_serial = self.concave = None
+        self.vertex_serial = None
 
     def __len__(self) -> int:
         return len(self.ops)
