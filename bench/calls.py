@@ -12,7 +12,8 @@ Reports, medians over rounds, all measured in this one run:
 * the Heidmann 1991 frame of vgxsim/examples/heidmann1991.py at 1280 x 1024 through
   the API: the whole frame, the raster part (time inside ``CommandBatch.flush``:
   binning and the band kernels) and the front end (the rest: the calls, recording,
-  transform, lighting, clipping and set-up);
+  transform, lighting, clipping and set-up), with the front end's fast paths
+  (FUSED_FRONT, BATCH_LIGHTING) on and off, alternating frame by frame;
 * the makeobj replay of the frame's DrawObjects (one callobj per pass);
 * the same frame drawn by a PyOpenGL immediate-mode transliteration of the example
   (bench/heidmann_gl.py) on llvmpipe with LP_NUM_THREADS=1 and 2.
@@ -199,6 +200,8 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
     from vgxsim import batch as batch_mod
     from vgxsim import gl
     from vgxsim.examples.heidmann1991 import Shadows
+    from vgxsim.geometry import pipeline as geometry
+    from vgxsim.pipeline import draw
 
     spent = [0.0]
     real_flush = batch_mod.CommandBatch.flush
@@ -233,8 +236,31 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
             return (float(np.median(tot_a)) * 1e3, float(np.median(ras_a)) * 1e3,
                     float(np.median(tot_a - ras_a)) * 1e3)
 
+        def fast_paths(on: bool) -> None:
+            geometry.FUSED_FRONT = on
+            draw.BATCH_LIGHTING = on
+
         out = {}
-        out["frame_ms"], out["raster_ms"], out["front_end_ms"] = measure(frame)
+        # The front end's fast paths (fused geometry pass, lighting over whole groups)
+        # on and off, alternating frame by frame; the plain figures are "on".
+        samples: dict = {True: ([], []), False: ([], [])}
+        frame()
+        try:
+            for _ in range(rounds):
+                for on in (True, False):
+                    fast_paths(on)
+                    spent[0] = 0.0
+                    t = clock()
+                    frame()
+                    samples[on][0].append(clock() - t)
+                    samples[on][1].append(spent[0])
+        finally:
+            fast_paths(True)
+        for on, suffix in ((True, ""), (False, "_fast_paths_off")):
+            tot_a, ras_a = (np.array(v) for v in samples[on])
+            out["frame_ms" + suffix] = float(np.median(tot_a)) * 1e3
+            out["raster_ms" + suffix] = float(np.median(ras_a)) * 1e3
+            out["front_end_ms" + suffix] = float(np.median(tot_a - ras_a)) * 1e3
         # DrawObjects compiled into display objects, one per material part.
         draw_objects = prog.DrawObjects
         for part in range(3):
@@ -260,17 +286,18 @@ def _count_polygons(prog) -> int:
     count = [0]
     real = gl.bgnpolygon
     import vgxsim.examples.heidmann1991 as ex
+    import vgxsim.shadow.program as program  # where the example's drawing code lives
 
     def counting():
         count[0] += 1
         real()
 
-    ex.bgnpolygon = counting
+    ex.bgnpolygon = program.bgnpolygon = counting
     try:
         prog.DrawFrame()
         gl.swapbuffers()
     finally:
-        ex.bgnpolygon = real
+        ex.bgnpolygon = program.bgnpolygon = real
     return count[0]
 
 

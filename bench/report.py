@@ -7,7 +7,8 @@ Everything is measured side by side in one run and medians are quoted:
   pass, each beside a loop that only touches the same memory (the ratio is the
   figure that carries across machines);
 * 10-pixel triangles per second through the array path (transform, clip, snap,
-  setup, bin, raster);
+  setup, bin, raster), and split into front end and raster with the fused front end
+  (kernels/front.py) on and off, alternating;
 * thread scaling 1 -> 2 (numba.set_num_threads);
 * Mesa llvmpipe on the same workloads with LP_NUM_THREADS = 1 and 2, each in its own
   process (llvmpipe reads the variable once);
@@ -74,6 +75,57 @@ def vgxsim_rates(rounds: int) -> tuple[dict, dict]:
                 work[name] = batch.work()
     numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
     return out, work
+
+
+def small_triangle_split(rounds: int) -> dict:
+    """The 10-pixel triangles (bench/scenes.py small_triangles) split into front end
+    (transform, clip, project, snap, set-up: the time outside CommandBatch.flush) and
+    raster (inside it), with the fused front end (kernels/front.py) on and off,
+    alternating round by round on 1 and 2 threads.  Process CPU time (all threads)
+    beside wall time: on a shared machine the CPU time is the steadier figure.
+
+    Returns {(threads, fused): {"wall", "cpu", "front_cpu", "raster_cpu"}} in s.
+    """
+    from vgxsim.geometry import pipeline as geometry
+
+    spent = [0.0]
+    real_flush = CommandBatch.flush
+
+    def timed_flush(self, *a, **k):
+        t = time.process_time()
+        try:
+            return real_flush(self, *a, **k)
+        finally:
+            spent[0] += time.process_time() - t
+
+    out: dict = {}
+    keep = geometry.FUSED_FRONT
+    CommandBatch.flush = timed_flush
+    try:
+        for threads in (1, 2):
+            numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+            run, _units = scenes.small_triangles()
+            samples: dict = {}
+            for r in range(rounds + 1):
+                for fused in (True, False):
+                    geometry.FUSED_FRONT = fused
+                    spent[0] = 0.0
+                    c, w = time.process_time(), time.perf_counter()
+                    run()
+                    row = (time.perf_counter() - w, time.process_time() - c, spent[0])
+                    if r:  # the first round compiles and warms up
+                        samples.setdefault(fused, []).append(row)
+            for fused, rows in samples.items():
+                a = np.array(rows)
+                out[(threads, fused)] = {
+                    "wall": float(np.median(a[:, 0])), "cpu": float(np.median(a[:, 1])),
+                    "front_cpu": float(np.median(a[:, 1] - a[:, 2])),
+                    "raster_cpu": float(np.median(a[:, 2]))}
+    finally:
+        CommandBatch.flush = real_flush
+        geometry.FUSED_FRONT = keep
+        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    return out
 
 
 def dense_rates(rounds: int, mesa: bool) -> dict:
@@ -181,6 +233,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     rounds = 3 if args.quick else 7
     rates, work = vgxsim_rates(rounds)
+    split = small_triangle_split(rounds)
     mesa = {} if args.no_mesa else mesa_rates()
     cold, warm = start_times()
     frame = heidmann_frame(rounds)
@@ -214,6 +267,16 @@ def main(argv=None) -> int:
             vs = f"{r2 / (u / t / 1e6):.2f}x"
         print(f"{name + ' (' + units[name] + ')':28s} {r1:12.1f} {r2:12.1f} {r2 / r1:7.2f}x"
               f" {ratio:>12s} {m1:>12s} {m2:>12s} {vs:>10s}")
+    print("\n10-pixel triangles, 200 k per run, fused front end (kernels/front.py) on/off, "
+          "alternating (ms; CPU = process time of all threads):")
+    print(f"{'threads':>8s} {'fused':>6s} {'wall':>8s} {'CPU':>8s} {'front CPU':>10s} "
+          f"{'raster CPU':>11s} {'Mtri/s wall':>12s}")
+    for (threads, fused), v in sorted(split.items()):
+        print(f"{threads:8d} {'on' if fused else 'off':>6s} {v['wall'] * 1e3:8.1f} "
+              f"{v['cpu'] * 1e3:8.1f} {v['front_cpu'] * 1e3:10.1f} "
+              f"{v['raster_cpu'] * 1e3:11.1f} {0.2 / v['wall']:12.2f}")
+    raw["small_triangle_split"] = {f"{t}@{'fused' if f else 'unfused'}": v
+                                   for (t, f), v in split.items()}
     if mesa.get(1, {}).get("renderer"):
         print(f"\nMesa renderer: {mesa[1]['renderer']}")
     elif mesa:

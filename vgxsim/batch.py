@@ -14,6 +14,7 @@ import numpy as np
 
 from vgxsim import coldstart, threads
 from vgxsim.kernels.clip import snap_window
+from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
 from vgxsim.kernels.render import bin_primitives, render_bands
 from vgxsim.kernels.setup import setup_triangles, setup_triangles_states
 from vgxsim.state.codes import (
@@ -58,7 +59,26 @@ def band_shift(height: int, nthreads: int) -> int:
     rows = max(1, height // per)
     return max(MIN_BAND_SHIFT, min(MAX_BAND_SHIFT, rows.bit_length() - 1))
 PARALLEL_SETUP = 20_000  # triangles in one call above which set-up runs on all threads
+PARALLEL_FRONT = 4_096  # the same for the fused front end (add_object_triangles)
 MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
+
+
+def _cuts(n: int, parts: int) -> list[tuple[int, int]]:
+    """``parts`` nearly equal, non-empty ranges covering 0 .. n - 1."""
+    c = np.linspace(0, n, max(1, parts) + 1).astype(np.int64).tolist()
+    return [(a, b) for a, b in zip(c[:-1], c[1:], strict=True) if b > a]
+
+
+def _run_chunks(parallel: bool, nthreads: int, kernel, cuts, *args) -> None:
+    """``kernel(*args, a, b)`` for every range of ``cuts``, on the worker threads when
+    ``parallel`` (the kernels release the GIL and write disjoint rows)."""
+    if not parallel or len(cuts) == 1:
+        for a, b in cuts:
+            kernel(*args, a, b)
+        return
+    pool = threads.pool(nthreads)
+    for f in [pool.submit(kernel, *args, a, b) for a, b in cuts]:
+        f.result()
 
 
 def _grow(arr: np.ndarray, need: int) -> np.ndarray:
@@ -296,6 +316,123 @@ class CommandBatch:
                         self.t_box[start:self.ntris, 3])
         self._maybe_flush()
         return self.ntris - start
+
+    def add_object_triangles(self, obj, mvp, viewport, depth, guard, user_planes, attr, tris,
+                             flat_col, states: list[RasterState], tri_state=None) -> int:
+        """Transform, clip, project, snap, set up and queue triangles in one fused pass
+        per chunk (vgxsim/kernels/front.py), chunks spread over the worker threads.
+
+        Gives the set-up records :func:`vgxsim.geometry.pipeline.draw_triangles`
+        builds through :meth:`add_triangles` / :meth:`add_triangles_states` (the
+        rasterized triangles and their order are the same; a clipped triangle keeps
+        ``CLIP_SLOTS`` records, the unused ones dead).
+
+        Parameters
+        ----------
+        obj : ndarray, shape (Nv, 4), float64
+            Homogeneous object coordinates.
+        mvp : ndarray, shape (4, 4), float64
+        viewport : tuple of 4 int; depth : tuple of 2 float
+            Inclusive viewport and lsetdepth range.
+        guard : tuple of 2 float
+            Guard band (vgxsim.geometry.pipeline._guard).
+        user_planes : ndarray, shape (K, 4), float64
+            User clip planes in clip space (clipplane(3G)).
+        attr : ndarray, shape (Nv, 4), float64 or None
+            Vertex colour in [0, 1]; None when colour is not written.
+        tris : ndarray, shape (Nt, 3), int64
+        flat_col : ndarray, shape (Nt, 4), float64 or None
+            Per triangle, its flat-shading colour.
+        states : list of RasterState
+            One state, or (with ``tri_state``) the states of several that differ only
+            in fragment state.
+        tri_state : ndarray, shape (Nt,), int64, optional
+            Index into ``states`` of each triangle.
+
+        Returns
+        -------
+        int
+            Set-up records used.
+        """
+        nt = tris.shape[0]
+        nv = obj.shape[0]
+        if nt == 0 or nv == 0:
+            return 0
+        rs = states[0]
+        if tri_state is None:
+            idx = np.full(nt, self.state_index(rs), np.int64)
+            culls = np.full(nt, rs.cull, np.int64)
+        else:
+            rows = [(self.state_index(r), r.cull) for r in states]
+            table = np.array(rows, np.int64).reshape(-1, 2)
+            idx = np.ascontiguousarray(table[tri_state, 0])
+            culls = np.ascontiguousarray(table[tri_state, 1])
+        want_colour = attr is not None or flat_col is not None
+        attrv = attr if attr is not None else np.zeros((nv, 0))
+        flatv = flat_col if flat_col is not None else np.zeros((1, 4))
+        flat = rs.shademodel == FLAT or attr is None
+        l, r, b, t = (int(v) for v in viewport)
+        znear, zfar = float(depth[0]), float(depth[1])
+        gx, gy = guard
+        sub = bool(rs.subpixel)
+        clip_v = np.empty((nv, 4))
+        code = np.empty(nv, np.uint16)
+        user = np.ascontiguousarray(user_planes, dtype=np.float64).reshape(-1, 4)
+        xf = np.empty(nv, np.int64)
+        yf = np.empty(nv, np.int64)
+        zw = np.empty(nv, np.float64)
+        nthreads = threads.get_threads()
+        par = nthreads > 1 and nt >= PARALLEL_FRONT
+        _run_chunks(par, nthreads, front_vertices, _cuts(nv, nthreads if par else 1), obj, mvp,
+                    gx, gy, user, l, r, b, t, znear, zfar, sub, clip_v, code, xf, yf, zw)
+        slots = front_slots(code, tris)
+        used = int(slots[nt])
+        if used == nt and not (slots[1:] - slots[:-1] - 1).any():
+            rec_tris, rec_src = tris, None  # the usual case: one record per triangle
+        else:
+            xf, yf, zw, attrv, rec_tris, rec_src = front_assemble(
+                clip_v, code, xf, yf, zw, attrv, tris, slots, gx, gy, user, l, r, b, t, znear,
+                zfar, sub)
+            idx = np.ascontiguousarray(idx[rec_src])
+            culls = np.ascontiguousarray(culls[rec_src])
+        src = np.arange(used, dtype=np.int64) if rec_src is None else rec_src
+        colv = attrv if attr is not None else np.zeros((1, 4))
+        start = self.ntris
+        end = start + used
+        self.t_edge = _grow(self.t_edge, end)
+        self.t_box = _grow(self.t_box, end)
+        self.t_z = _grow(self.t_z, end)
+        self.t_zlim = _grow(self.t_zlim, end)
+        self.t_col = _grow(self.t_col, end)
+        self.t_state = _grow(self.t_state, end)
+        out = (self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state)
+        cuts = _cuts(used, nthreads if par else 1)
+        if len(cuts) <= 1:
+            setup_triangles_states(xf, yf, zw, colv, rec_tris, src, flatv, idx, culls, flat,
+                                   want_colour, *out, start)
+        else:
+            # Every record owns its slot, so chunks set up in parallel, order unchanged.
+            pool = threads.pool(nthreads)
+            futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, rec_tris[a:b],
+                                   src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
+                                   *out, start + a) for a, b in cuts]
+            for f in futures:
+                f.result()
+        self.ntris = end
+        refs = np.arange(start, end, dtype=np.int64)
+        box = self.t_box[start:end]
+        if tri_state is None:
+            # As add_triangles bins: by the rows inside the raster rectangle.
+            sx0, sx1, sy0, sy1 = rs.scissor
+            y0 = np.maximum(box[:, 2], sy0)
+            y1 = np.minimum(box[:, 3], sy1)
+            y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0)
+               | (box[:, 0] > box[:, 1])] = -1
+        else:
+            y0, y1 = box[:, 2], box[:, 3]
+        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
+        self._maybe_flush()
+        return used
 
     def add_window_triangles(self, xw, yw, zw, col, tris, rs: RasterState, flat_col=None) -> int:
         """Queue triangles given in float IRIS window coordinates (library fast path).

@@ -16,6 +16,12 @@ from vgxsim.kernels.clip import NO_PLANES, clip_segments, clip_triangles, outcod
 from vgxsim.kernels.lines import count_line_fragments, line_fragments, line_steps, point_fragments
 from vgxsim.state.raster import FLAT, RasterState
 
+#: Fast-path switch: transform, clip, project, snap and set-up of triangles fused per
+#: chunk and run on the worker threads (CommandBatch.add_object_triangles,
+#: kernels/front.py).  False: the stage-by-stage passes below, which give the same
+#: planes (tests/pipeline/test_fused_front.py compares).
+FUSED_FRONT = True
+
 GUARD_PIXELS = 16384.0  # guard band half-width beyond the viewport centre, pixels
 
 
@@ -109,11 +115,13 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
     int
         Triangles queued.
     """
-    clip_v = _tame(clip_coords) if clip_coords is not None else to_clip(obj, view.mvp)
     tris = np.ascontiguousarray(tris, dtype=np.int64).reshape(-1, 3)
     if tris.shape[0] == 0:
         return 0
     want = rgba is not None
+    if FUSED_FRONT and clip_coords is None and _plain_batch(batch):
+        return _draw_fused(batch, rs, view, obj, rgba, tris, flat_rgba, tri_states)
+    clip_v = _tame(clip_coords) if clip_coords is not None else to_clip(obj, view.mvp)
     attr = np.ascontiguousarray(rgba, dtype=np.float64) if want else np.zeros((clip_v.shape[0], 0))
     gx, gy = _guard(view.viewport)
     out_v, out_attr, out_tris, out_src = clip_triangles(
@@ -130,6 +138,39 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
                                           np.ascontiguousarray(per_tri[out_src]))
     return batch.add_triangles(xf, yf, zw, out_attr if want else None, out_tris, out_src,
                                flat, rs)
+
+
+def _plain_batch(batch) -> bool:
+    """Whether ``batch`` takes triangles only through its own methods: a capture of
+    the batch's input (vgxsim.reference.recorder) wraps add_triangles, which the
+    fused pass would go around."""
+    from vgxsim import batch as batch_mod
+
+    return getattr(type(batch), "add_triangles", None) is batch_mod._ADD_TRIANGLES
+
+
+def _draw_fused(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgba,
+                tri_states) -> int:
+    """:func:`draw_triangles` through the fused front end (``FUSED_FRONT``)."""
+    obj = np.asarray(obj, dtype=np.float64)
+    if obj.shape[1] == 3:
+        obj = np.concatenate([obj, np.ones((obj.shape[0], 1))], axis=1)
+    obj = np.ascontiguousarray(obj)
+    attr = np.ascontiguousarray(rgba, dtype=np.float64) if rgba is not None else None
+    flat = None
+    if attr is not None and rs.shademodel == FLAT:
+        flat = (np.ascontiguousarray(flat_rgba, dtype=np.float64) if flat_rgba is not None
+                else attr[tris[:, 2]])
+    mvp = np.ascontiguousarray(view.mvp, dtype=np.float64)
+    if tri_states is not None:
+        states, per_tri = tri_states
+        return batch.add_object_triangles(obj, mvp, view.viewport, view.depth,
+                                          _guard(view.viewport), view.user_planes, attr,
+                                          tris, flat, states,
+                                          np.ascontiguousarray(per_tri, dtype=np.int64))
+    return batch.add_object_triangles(obj, mvp, view.viewport, view.depth,
+                                      _guard(view.viewport), view.user_planes, attr, tris,
+                                      flat, [rs])
 
 
 def draw_lines(batch, rs: RasterState, view: Viewing, obj, rgba, segs, pattern_start,

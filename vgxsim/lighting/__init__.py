@@ -3,11 +3,12 @@
 Self-contained (numpy only).  :mod:`.tables` holds the definitions and the three
 index tables (:class:`LightingTables`, whose ``lmdef`` parses IRIS property lists);
 :mod:`.equation` evaluates the RGB lighting equation for arrays of eye-space
-vertices (:func:`shade`), with ``lmcolor`` overrides (:func:`apply_lmcolor`) and a
-helper that takes a light to eye space at ``lmbind`` (:func:`light_to_eye`).
+vertices (:func:`shade`; :func:`shade_runs` for runs of several materials), with
+``lmcolor`` overrides (:func:`apply_lmcolor`) and a helper that takes a light to eye
+space at ``lmbind`` (:func:`light_to_eye`).
 """
 
-from .equation import LightEntry, apply_lmcolor, light_to_eye, shade
+from .equation import LightEntry, apply_lmcolor, light_to_eye, shade, shade_runs
 from .tables import Light, LightingError, LightingTables, LightModel, Material
 
 __all__ = [
@@ -20,4 +21,5 @@ __all__ = [
     "apply_lmcolor",
     "light_to_eye",
     "shade",
+    "shade_runs",
 ]

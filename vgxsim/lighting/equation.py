@@ -115,7 +115,8 @@ def apply_lmcolor(material: Material, mode: int, rgba: Sequence[float]) -> Mater
 
 
 class _MatArrays(NamedTuple):
-    """Per-vertex material: (N, 3) colours, (N,) shininess and alpha, float64."""
+    """Material terms: colours (3,) or per vertex (N, 3), shininess and alpha
+    scalars or (N,), float64."""
 
     emission: np.ndarray
     ambient: np.ndarray
@@ -128,12 +129,15 @@ class _MatArrays(NamedTuple):
 def _material_arrays(
     material: Material, n: int, override: tuple[int, np.ndarray] | None
 ) -> _MatArrays:
-    """Broadcast ``material`` to n vertices and apply a per-vertex lmcolor override."""
-    cols = {
-        name: np.broadcast_to(np.asarray(getattr(material, name), np.float64), (n, 3))
-        for name in ("emission", "ambient", "diffuse", "specular")
-    }
-    alpha = np.broadcast_to(np.float64(material.alpha), (n,))
+    """The material's terms for n vertices, with a per-vertex lmcolor override.
+
+    Terms the override leaves alone stay (3,) colours and scalars: numpy broadcasts
+    them in the arithmetic, element by element, to the values an (N, 3) copy gives,
+    without building the copies (a polygon of four vertices is lit per call).
+    """
+    cols = {name: np.asarray(getattr(material, name), np.float64)
+            for name in ("emission", "ambient", "diffuse", "specular")}
+    alpha = np.float64(material.alpha)
     if override is not None:
         mode, c = override
         names, takes_alpha = _lmc_spec(mode)
@@ -141,23 +145,22 @@ def _material_arrays(
             cols[name] = c[:, :3]
         if takes_alpha and c.shape[1] == 4:
             alpha = c[:, 3]
-    shin = np.broadcast_to(np.float64(material.shininess), (n,))
-    return _MatArrays(shininess=shin, alpha=alpha, **cols)
+    return _MatArrays(shininess=np.float64(material.shininess), alpha=alpha, **cols)
 
 
 def _select(back: np.ndarray, a: _MatArrays, b: _MatArrays) -> _MatArrays:
-    """Per vertex, b where ``back`` else a."""
-    out = []
-    for fa, fb in zip(a, b, strict=True):
-        mask = back[:, None] if fa.ndim == 2 else back
-        out.append(np.where(mask, fb, fa))
-    return _MatArrays(*out)
+    """Per vertex, b where ``back`` else a (terms broadcast to (N, 3) and (N,))."""
+    colour = back[:, None]
+    return _MatArrays(*(np.where(colour if name not in ("shininess", "alpha") else back,
+                                 fb, fa)
+                        for name, fa, fb in zip(_MatArrays._fields, a, b, strict=True)))
 
 
 def _normalize(v: np.ndarray) -> np.ndarray:
     """Unit vectors along the last axis; zero vectors stay zero."""
-    length = np.linalg.norm(v, axis=-1, keepdims=True)
-    return np.divide(v, length, out=np.zeros_like(v), where=length > 0.0)
+    # np.linalg.norm's own arithmetic for real input, without its dispatch.
+    length = np.sqrt(np.add.reduce(v * v, axis=-1, keepdims=True))
+    return np.divide(v, length, out=np.zeros(v.shape), where=length > 0.0)
 
 
 def _as_points(a: np.ndarray | Sequence, name: str) -> np.ndarray:
@@ -273,6 +276,56 @@ def shade(
         if back_material is not None and back.any():
             mat = _select(back, mat, _material_arrays(back_material, n_vert, None))
 
+    return _light_vertices(p, nrm, mat, lights, lmodel)
+
+
+def shade_runs(
+    positions_eye: np.ndarray,
+    normals_eye: np.ndarray,
+    materials: Sequence[Material],
+    counts: Sequence[int],
+    lights: Sequence[LightEntry],
+    lmodel: LightModel,
+) -> np.ndarray:
+    """:func:`shade` for consecutive runs of vertices, each with its own front
+    material, under the same lights and one-sided lighting model, in one pass.
+
+    The colours are those :func:`shade` gives each run on its own (the equation is
+    evaluated vertex by vertex; only the material terms become per-vertex arrays).
+
+    Parameters
+    ----------
+    positions_eye, normals_eye : ndarray, shape (N, 3), float64
+    materials : sequence of Material
+        One per run.
+    counts : sequence of int
+        Vertices in each run (summing to N).
+    lights, lmodel
+        As for :func:`shade`; ``lmodel.twoside`` must be off.
+
+    Returns
+    -------
+    ndarray, shape (N, 4), float64
+    """
+    p = _as_points(positions_eye, "positions_eye")
+    nrm = _normalize(_as_points(normals_eye, "normals_eye"))
+    if lmodel.twoside:
+        raise LightingError("shade_runs: two-sided lighting is lit per run (shade)")
+    reps = np.asarray(counts, dtype=np.int64)
+    if reps.shape != (len(materials),) or (int(reps.sum()) != p.shape[0]
+                                                  or nrm.shape[0] != p.shape[0]):
+        raise LightingError(f"shade_runs: {len(materials)} materials, counts {reps.tolist()} "
+                            f"for {p.shape[0]} positions and {nrm.shape[0]} normals")
+    terms = {name: np.repeat(np.array([getattr(m, name) for m in materials], np.float64),
+                             reps, axis=0)
+             for name in _MatArrays._fields}
+    return _light_vertices(p, nrm, _MatArrays(**terms), lights, lmodel)
+
+
+def _light_vertices(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
+                    lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
+    """The lighting equation for (N, 3) eye positions and unit normals."""
+    n_vert = p.shape[0]
     rgb = mat.emission + mat.ambient * np.asarray(lmodel.ambient, dtype=np.float64)
 
     if lmodel.local_viewer:

@@ -21,6 +21,10 @@ from vgxsim.stream.opcodes import (
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
+    P_SWAP0,
+    P_SWAP1,
+    P_V0,
+    P_V1,
     PMV,
     POINT,
     POLYGON,
@@ -33,6 +37,8 @@ from .draw import defer_triangles, draw_arrays
 
 _TRIANGLES = np.zeros(16, bool)
 _TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
+_POLYGONS = np.zeros(16, bool)
+_POLYGONS[[POLYGON, PMV]] = True
 
 
 def drain(ctx) -> None:
@@ -103,6 +109,10 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
     starts = np.flatnonzero(brk).tolist()
     ends = starts[1:] + [npr]
     rows = prims.tolist()
+    # Drawn in order below; collected first so that lighting runs once over the lit
+    # groups that share lights (draw.shade_groups).
+    jobs: list = []
+    lit_groups: list = []
     for a, b in zip(starts, ends, strict=True):
         kind, v0, v1, si, lms = rows[a][0], rows[a][1], rows[b - 1][2], rows[a][3], rows[a][4]
         if v1 == v0:
@@ -113,8 +123,8 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
         if not tri[a]:
             # Lines and points: one primitive per group (the line-style pattern
             # restarts at every bgnline).
-            draw_arrays(ctx, state, bool(lms), NAME_OF[kind], pos[sl], col[sl], nrm[sl], lit,
-                        private=True)
+            jobs.append((draw_arrays, (ctx, state, bool(lms), NAME_OF[kind], pos[sl], col[sl],
+                                       nrm[sl], lit), {"private": True}))
             continue
         if state.concave or b - a == 1:
             for r in rows[a:b]:
@@ -123,19 +133,29 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
                 ps = slice(r[1], r[2])
                 st = records[r[3]]
                 name = "polygon" if r[0] in (POLYGON, PMV) else NAME_OF[r[0]]
-                draw_arrays(ctx, st, bool(lms), name, pos[ps], col[ps], nrm[ps],
-                            _lit(st, sent[ps]), swaps=swaps[r[5]:r[6]].tolist(),
-                            private=True)
+                jobs.append((draw_arrays, (ctx, st, bool(lms), name, pos[ps], col[ps], nrm[ps],
+                                           _lit(st, sent[ps])),
+                             {"swaps": swaps[r[5]:r[6]].tolist(), "private": True}))
             continue
-        tris, prov, tri_prim = _group_triangles(rows[a:b], v0, swaps)
+        tris, prov, tri_prim = _group_triangles(prims[a:b], v0, swaps)
         tri_states = None
         recs = [records[r[3]] for r in rows[a:b]]
         if any(r.raster is not state.raster for r in recs):
             tri_states = (recs, tri_prim)  # one entry per primitive of the group
         normals = nrm[sl] if state.lighting is not None else None
         cols = col[sl] if _wants_colour(state) else None
-        defer_triangles(ctx, state, bool(lms), pos[sl], cols, normals,
-                        lit if normals is not None else None, tris, prov, tri_states)
+        lit = lit if normals is not None else None
+        kw = {}
+        if draw.BATCH_LIGHTING and cols is not None and normals is not None:
+            kw = {"lit_rgba": len(lit_groups)}  # filled in once all groups are known
+            lit_groups.append((state, bool(lms), pos[sl], normals, cols, lit))
+        jobs.append((defer_triangles, (ctx, state, bool(lms), pos[sl], cols, normals, lit,
+                                       tris, prov, tri_states), kw))
+    shaded = draw.shade_groups(lit_groups) if len(lit_groups) > 1 else [None] * len(lit_groups)
+    for fn, args, kw in jobs:
+        if "lit_rgba" in kw:
+            kw = {"lit_rgba": shaded[kw["lit_rgba"]]}
+        fn(*args, **kw)
 
 
 def _wants_colour(state) -> bool:
@@ -144,52 +164,56 @@ def _wants_colour(state) -> bool:
     return needs_colour(state.raster)
 
 
-def _group_triangles(rows: list, base: int, swaps: np.ndarray):
-    """Triangles (indices from ``base``), flat-shading vertices and primitive (its
-    position in ``rows``) of consecutive primitives: runs of polygons are fanned in one go, each as
-    assembly.polygon_fan fans it (first vertex, i, i + 1; the last vertex
-    provokes)."""
-    tris, prov, recs, fans, fan_recs = [], [], [], [], []
-    for k, r in enumerate(rows + [None]):
-        if r is not None and r[0] in (POLYGON, PMV):
-            if r[2] > r[1]:
-                fans.append((r[1] - base, r[2] - r[1]))
-                fan_recs.append(k)
-            continue
-        if fans:
-            t, pv = _fans(fans)
+def _group_triangles(block: np.ndarray, base: int, swaps: np.ndarray):
+    """Triangles (indices from ``base``), flat-shading vertices and primitive (its row
+    in ``block``) of consecutive primitives (rows of the decoded primitive table):
+    each run of polygons is fanned in one vectorized step, each as
+    assembly.polygon_fan fans it (first vertex, i, i + 1; the last vertex provokes)."""
+    poly = _POLYGONS[block[:, P_KIND]]
+    n = block.shape[0]
+    cuts = np.flatnonzero(~(poly[1:] & poly[:-1])) + 1  # a run of polygons, or one row
+    bounds = [0, *cuts.tolist(), n]
+    tris, prov, recs = [], [], []
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        if poly[a]:
+            start = block[a:b, P_V0] - base
+            size = block[a:b, P_V1] - block[a:b, P_V0]
+            t, pv, ntri = _fans(start, size)
             tris.append(t)
             prov.append(pv)
-            ntri = np.maximum(np.array([f[1] for f in fans], np.int64) - 2, 0)
-            recs.append(np.repeat(np.array(fan_recs, np.int64), ntri))
-            fans, fan_recs = [], []
-        if r is None or r[2] == r[1]:
+            recs.append(np.repeat(np.arange(a, b, dtype=np.int64), ntri))
             continue
-        n = r[2] - r[1]
-        off = r[1] - base
-        if r[0] == TMESH:
-            t = assembly.tmesh_triangles(n, swaps[r[5]:r[6]].tolist())
+        kind, v0, v1, s0, s1 = (int(block[a, c]) for c in (P_KIND, P_V0, P_V1, P_SWAP0,
+                                                            P_SWAP1))
+        if v1 == v0:
+            continue
+        count = v1 - v0
+        off = v0 - base
+        if kind == TMESH:
+            t = assembly.tmesh_triangles(count, swaps[s0:s1].tolist())
             pv = t[:, 2].copy()
         else:
-            t = assembly.qstrip_triangles(n)
+            t = assembly.qstrip_triangles(count)
             pv = t.max(axis=1) if t.shape[0] else np.zeros(0, np.int64)
         t = np.asarray(t, np.int64).reshape(-1, 3)
         tris.append(t + off)
         prov.append(np.asarray(pv, np.int64) + off)
-        recs.append(np.full(t.shape[0], k, np.int64))
+        recs.append(np.full(t.shape[0], a, np.int64))
+    if not tris:
+        return np.zeros((0, 3), np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64)
     return (np.concatenate(tris).astype(np.int64), np.concatenate(prov).astype(np.int64),
             np.concatenate(recs))
 
 
-def _fans(polys: list[tuple[int, int]]) -> tuple[np.ndarray, np.ndarray]:
-    """Fan triangles (first, i, i + 1) of consecutive polygons given as (start, size),
-    in order, with each polygon's last vertex as the flat-shading vertex."""
-    start, size = (np.array(v, dtype=np.int64) for v in zip(*polys, strict=True))
+def _fans(start: np.ndarray, size: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Fan triangles (first, i, i + 1) of consecutive polygons given by their first
+    vertex and size (int64 arrays), in order, with each polygon's last vertex as the
+    flat-shading vertex; and the number of triangles of each polygon."""
     ntri = np.maximum(size - 2, 0)
     first = np.repeat(start, ntri)
     k = np.arange(int(ntri.sum()), dtype=np.int64) - np.repeat(np.cumsum(ntri) - ntri, ntri)
     tris = np.stack([first, first + 1 + k, first + 2 + k], axis=1)
-    return tris, np.repeat(start + size - 1, ntri)
+    return tris, np.repeat(start + size - 1, ntri), ntri
 
 
 __all__ = ["drain", "LINE", "CLOSEDLINE", "POINT"]

@@ -15,7 +15,7 @@ import numpy as np
 from vgxsim.geometry import assembly
 from vgxsim.geometry.pipeline import Viewing, draw_points, draw_polyline, draw_triangles
 from vgxsim.geometry.transform import apply
-from vgxsim.lighting import shade
+from vgxsim.lighting import shade, shade_runs
 from vgxsim.state.raster import FLAT, needs_colour
 
 from .depthcue import cue_vertices
@@ -26,6 +26,12 @@ from .records import DrawState, same_projection, same_state
 #: records differ only in fragment state (stencil before every 1991 shadow face).
 #: False: one pass per record (tests/stream/test_random_streams.py compares).
 MERGE_FRAGMENT_STATES = True
+
+#: Fast-path switch: at a flush, the lit triangle groups under the same lights and
+#: lighting model are lit in one pass (:func:`shade_groups`: the 1991 frame lights a
+#: floor and a few small objects, each with its own material and matrix, per pass).
+#: False: one lighting pass per group (tests/pipeline/test_batched_lighting.py).
+BATCH_LIGHTING = True
 
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
     "polygon", "tmesh", "qstrip", "line", "closedline", "point")
@@ -72,6 +78,61 @@ def shade_vertices(state: DrawState, lmcolor_set: bool, obj, normals, colours, l
     facing = np.ones(pos.shape[0], bool) if back else None
     out[lit] = shade(pos, nrm, ls.material, list(ls.lights), ls.lmodel,
                      back_material=ls.back_material, facing=facing, color_override=override)
+    return out
+
+
+def _eye_space(state: DrawState, obj, normals, lit):
+    """Eye-space positions and normals of the lit vertices (as :func:`shade_vertices`
+    takes them there)."""
+    ls = state.lighting
+    eye = apply(obj[lit], ls.modelview)
+    pos = eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4])
+    return pos, apply(normals[lit], ls.normal_matrix)
+
+
+def shade_groups(groups: list) -> list:
+    """Vertex colours of several groups, lit together where they can be.
+
+    Parameters
+    ----------
+    groups : list of (DrawState, lmcolor_set, obj, normals, colours, lit)
+        As :func:`shade_vertices` takes them.
+
+    Returns
+    -------
+    list
+        Per group, its (N, 4) float64 colours, or None for a group lit on its own
+        (two-sided lighting, an lmcolor override, or no lit vertex).  Groups under
+        the same lights and lighting model share one :func:`~vgxsim.lighting.shade_runs`
+        pass, each with its own material: the equation is evaluated vertex by vertex,
+        so the colours are those one pass per group gives.
+    """
+    out: list = [None] * len(groups)
+    runs: dict[tuple, list[int]] = {}
+    for i, (state, lms, _obj, _nrm, _cols, lit) in enumerate(groups):
+        ls = state.lighting
+        if ls is None or ls.lmodel.twoside or override_of(state, lms) is not None:
+            continue
+        if not lit.any():
+            continue
+        runs.setdefault((id(ls.lmodel), tuple(id(e) for e in ls.lights)), []).append(i)
+    for members in runs.values():
+        if len(members) == 1:
+            continue  # one group: shade_vertices does the same
+        eye = [_eye_space(groups[i][0], groups[i][2], groups[i][3], groups[i][5])
+               for i in members]
+        ls = groups[members[0]][0].lighting
+        lit_rgba = shade_runs(np.concatenate([e[0] for e in eye]),
+                              np.concatenate([e[1] for e in eye]),
+                              [groups[i][0].lighting.material for i in members],
+                              [e[0].shape[0] for e in eye], list(ls.lights), ls.lmodel)
+        at = 0
+        for i, e in zip(members, eye, strict=True):
+            cols, lit = groups[i][4], groups[i][5]
+            rgba = np.array(cols, dtype=np.float64)
+            rgba[lit] = lit_rgba[at:at + e[0].shape[0]]
+            at += e[0].shape[0]
+            out[i] = rgba
     return out
 
 
@@ -124,17 +185,21 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
 
 
 def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
-                    tris, prov, tri_states=None) -> None:
+                    tris, prov, tri_states=None, lit_rgba=None) -> None:
     """Light one primitive's (or one group's) vertices and queue its triangles on
     ``ctx`` for a geometry pass shared with the queued ones that project alike.
 
     ``tri_states`` (list of DrawState, per-triangle index) gives triangles of several
     records that :func:`~.records.same_geometry` joins; ``state`` is one of them.
     Lighting is per vertex, so lighting each part on its own gives the colours
-    lighting them together would.
+    lighting them together would.  ``lit_rgba``: the colours already lit
+    (:func:`shade_groups`).
     """
-    obj, rgba, tris, prov = _lit_colours(state, lmcolor_set, obj, cols, normals, lit, tris,
-                                         prov)
+    if lit_rgba is not None:
+        rgba = vertex_colour_stage(state, obj, lit_rgba)  # two-sided is never batched
+    else:
+        obj, rgba, tris, prov = _lit_colours(state, lmcolor_set, obj, cols, normals, lit,
+                                             tris, prov)
     pend = ctx.pending_triangles
     if pend is not None and not (same_state(pend.state, state) or (
             MERGE_FRAGMENT_STATES and same_projection(pend.state, state))):

@@ -1,0 +1,194 @@
+"""The fused geometry front end: transform, clip, project and snap per chunk of
+vertices, then set-up per chunk of triangles, both on the worker threads.
+
+The stage-by-stage path (vgxsim/geometry/pipeline.py with ``FUSED_FRONT`` off) runs
+each stage over the whole list and hands full-size arrays from one to the next, on
+one thread up to set-up.  Here a chunk of vertices goes object -> clip -> outcode ->
+window -> fixed point in one pass (:func:`front_vertices`); the triangles then go
+straight to :func:`~.setup.setup_triangles_states` in chunks (the kernels release
+the GIL, vgxsim/threads.py runs the chunks side by side).  Only when a triangle
+needs clipping (rare: the guard band keeps x and y clipping away) or is rejected does
+a serial step (:func:`front_assemble`) build the list set-up reads.
+
+Bit-identical with the stage-by-stage path: every value comes from the same
+arithmetic in the same order -- the row order of :func:`~.transform.transform_points`,
+:func:`~.clip.outcodes`, :func:`~.clip.project_snap`, :func:`~.clip.clip_triangles`
+(called on the one triangle being clipped) and set-up itself -- each per vertex or
+per triangle with a row-independent rounding order (docs/numeric_model.md s. 4).
+Set-up is the existing kernel, so a cold start compiles little that is new.
+
+Records: triangle ``t`` owns the set-up records ``slots[t] .. slots[t + 1] - 1`` (one
+for a triangle inside every plane, none for one outside a plane, ``CLIP_SLOTS`` for
+one that needs clipping, the unused ones dead), so chunks know where to write before
+any of them has run, and the drawing order is the input order.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .clip import MAX_POLY, NONFINITE, clip_triangles, outcodes, project_snap
+from .options import jit
+
+HUGE = 1e300  # clip coordinates beyond this are rescaled (vgxsim.geometry.pipeline._tame)
+CLIP_SLOTS = MAX_POLY - 2  # set-up records reserved for a triangle that needs clipping
+
+
+@jit
+def front_vertices(obj, mvp, gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel,
+                   clip_v, code, xf, yf, zw, v0, v1):
+    """Vertices ``v0 .. v1 - 1``: clip position, outcode and snapped window position.
+
+    Parameters
+    ----------
+    obj : ndarray, shape (Nv, 4), float64
+        Homogeneous object coordinates.
+    mvp : ndarray, shape (4, 4), float64
+        Object -> clip (row vectors).
+    gx, gy : float
+        Guard band (:func:`~.clip.outcodes`).
+    user : ndarray, shape (K, 4), float64
+        User clip planes in clip space (clipplane(3G); (0, 4) when none is on).
+    vp_l, vp_r, vp_b, vp_t : int; znear, zfar : float; subpixel : bool
+        As for :func:`~.clip.project_snap`.
+    clip_v : ndarray, shape (Nv, 4), float64; code : ndarray, shape (Nv,), uint16
+    xf, yf : ndarray, shape (Nv,), int64; zw : ndarray, shape (Nv,), float64
+        Outputs, written in rows ``v0 .. v1 - 1``.
+    v0, v1 : int
+    """
+    for i in range(v0, v1):
+        # transform_points' order: ((p0*m0j + p1*m1j) + p2*m2j) + p3*m3j.
+        p0, p1, p2, p3 = obj[i, 0], obj[i, 1], obj[i, 2], obj[i, 3]
+        big = 0.0
+        finite = True
+        for q in range(4):
+            v = ((p0 * mvp[0, q] + p1 * mvp[1, q]) + p2 * mvp[2, q]) + p3 * mvp[3, q]
+            clip_v[i, q] = v
+            a = abs(v)
+            if not np.isfinite(a):
+                finite = False
+            elif a > big:
+                big = a
+        if finite and big > HUGE:
+            # The same point divided by its largest magnitude (geometry.pipeline._tame,
+            # row by row): keeps the clipper's plane distances finite.
+            for q in range(4):
+                clip_v[i, q] = clip_v[i, q] / big
+    c = clip_v[v0:v1]
+    code[v0:v1] = outcodes(c, gx, gy, user)
+    x, y, z = project_snap(c, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
+    xf[v0:v1] = x
+    yf[v0:v1] = y
+    zw[v0:v1] = z
+
+
+@jit
+def front_slots(code, tris):
+    """First set-up record of each triangle, relative to the call's first (see the
+    module docstring); ``slots[Nt]`` is the number of records the call uses.
+
+    Parameters
+    ----------
+    code : ndarray, shape (Nv,), uint16
+        Outcodes (:func:`front_vertices`).
+    tris : ndarray, shape (Nt, 3), int64
+
+    Returns
+    -------
+    ndarray, shape (Nt + 1,), int64
+    """
+    nt = tris.shape[0]
+    slots = np.empty(nt + 1, dtype=np.int64)
+    n = 0
+    for t in range(nt):
+        slots[t] = n
+        ca, cb, cc = code[tris[t, 0]], code[tris[t, 1]], code[tris[t, 2]]
+        if (ca | cb | cc) == 0:
+            n += 1
+        elif (ca & cb & cc) == 0 and ca != NONFINITE and cb != NONFINITE and cc != NONFINITE:
+            n += CLIP_SLOTS  # the clip_triangles rule: clipped, not rejected
+    slots[nt] = n
+    return slots
+
+
+@jit
+def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, user, vp_l, vp_r,
+                   vp_b, vp_t, znear, zfar, subpixel):
+    """The triangles set-up reads, one per record (see the module docstring), when
+    some triangle is clipped or rejected: the clipped ones' vertices appended.
+
+    Parameters
+    ----------
+    clip_v, code, xf, yf, zw : ndarray
+        The vertices after :func:`front_vertices`, shapes (Nv, 4), (Nv,).
+    attr : ndarray, shape (Nv, K), float64
+        Vertex colour in [0, 1] (K = 4), or K = 0 when colour is not written.
+    tris : ndarray, shape (Nt, 3), int64
+    slots : ndarray, shape (Nt + 1,), int64
+        From :func:`front_slots`.
+    gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel
+        As for :func:`front_vertices`.
+
+    Returns
+    -------
+    xf, yf, zw, attr : ndarray
+        The vertices with those clipping made appended.
+    rec_tris : ndarray, shape (slots[Nt], 3), int64
+        Per record, its triangle; a clipped triangle's unused records get the
+        degenerate (0, 0, 0), which set-up makes a dead record (zero area).
+    rec_src : ndarray, shape (slots[Nt],), int64
+        Per record, its input triangle.
+    """
+    nt = tris.shape[0]
+    nv = xf.shape[0]
+    k = attr.shape[1]
+    nrec = slots[nt]
+    nclip = 0
+    for t in range(nt):
+        if slots[t + 1] - slots[t] > 1:
+            nclip += 1
+    cap = nv + nclip * (3 + MAX_POLY)
+    oxf = np.empty(cap, dtype=np.int64)
+    oyf = np.empty(cap, dtype=np.int64)
+    ozw = np.empty(cap, dtype=np.float64)
+    oattr = np.empty((cap, k), dtype=np.float64)
+    oxf[:nv] = xf
+    oyf[:nv] = yf
+    ozw[:nv] = zw
+    oattr[:nv] = attr
+    rec_tris = np.zeros((nrec, 3), dtype=np.int64)
+    rec_src = np.empty(nrec, dtype=np.int64)
+    v3 = np.empty((3, 4), dtype=np.float64)
+    a3 = np.empty((3, k), dtype=np.float64)
+    one = np.zeros((1, 3), dtype=np.int64)
+    one[0, 1] = 1
+    one[0, 2] = 2
+    top = nv
+    for t in range(nt):
+        n = slots[t]
+        used = slots[t + 1] - n
+        for f in range(used):
+            rec_src[n + f] = t
+        if used == 1:
+            for j in range(3):
+                rec_tris[n, j] = tris[t, j]
+        elif used > 1:
+            for j in range(3):
+                i = tris[t, j]
+                for q in range(4):
+                    v3[j, q] = clip_v[i, q]
+                for q in range(k):
+                    a3[j, q] = attr[i, q]
+            cv, ca, fan, _src = clip_triangles(v3, a3, one, gx, gy, user)
+            px, py, pz = project_snap(cv, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
+            for i in range(cv.shape[0]):
+                oxf[top + i] = px[i]
+                oyf[top + i] = py[i]
+                ozw[top + i] = pz[i]
+                for q in range(k):
+                    oattr[top + i, q] = ca[i, q]
+            for f in range(fan.shape[0]):
+                for j in range(3):
+                    rec_tris[n + f, j] = top + fan[f, j]
+            top += cv.shape[0]
+    return oxf[:top], oyf[:top], ozw[:top], oattr[:top], rec_tris, rec_src
