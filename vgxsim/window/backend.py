@@ -39,6 +39,7 @@ import numpy as np  # noqa: E402
 import pygame  # noqa: E402
 
 from vgxsim import DEVICE  # noqa: E402
+from vgxsim.gl._core import window_of  # noqa: E402
 
 from .devices import MOUSE_BUTTONS, key_device, screen_position  # noqa: E402
 from .live import LiveEventQueue, LiveStep  # noqa: E402
@@ -132,8 +133,9 @@ class WindowBackend:
     def sink_factory(self, gid: int) -> ScreenSink:
         """Open the SDL window of the IRIS window ``gid`` (called by ``winopen``)."""
         ctx = self.session.windows[gid]
-        placed = ctx.origin if ctx.origin != (0, 0) else None
-        screen = ScreenWindow(gid, ctx.title, (ctx.width, ctx.height), placed)
+        rec = window_of(ctx)
+        placed = rec.origin if rec.origin != (0, 0) else None
+        screen = ScreenWindow(gid, rec.title, (ctx.width, ctx.height), placed)
         self.screens[gid] = screen
         self._by_window[screen.window.id] = gid
         record = self.frame_sinks(gid) if self.frame_sinks is not None else None
@@ -150,7 +152,7 @@ class WindowBackend:
             self._pending[screen.gid] = image
             return
         self._pending.pop(screen.gid, None)
-        title = ctx.title if ctx is not None else None
+        title = window_of(ctx).title if ctx is not None else None
         t = screen.show(image, title)
         self.present_times[self.queue.frame + 1] = t
 
@@ -166,7 +168,7 @@ class WindowBackend:
             if ctx.config.double or now - screen.shown_at < self.refresh_s:
                 continue
             image = self._pending.pop(gid, None)
-            screen.show(image if image is not None else ctx.display_rgba(), ctx.title)
+            screen.show(image if image is not None else ctx.display_rgba(), window_of(ctx).title)
 
     # -- input ------------------------------------------------------------------------
     def _gid(self, ev) -> int | None:
@@ -199,7 +201,7 @@ class WindowBackend:
         if ctx is None:
             return
         self._pointer = (gid, tuple(ev.pos))
-        x, y = screen_position(ev.pos, ctx.origin, ctx.height)
+        x, y = screen_position(ev.pos, window_of(ctx).origin, ctx.height)
         if self._motion is None:
             self._motion_posted = getattr(ev, "posted", 0.0)
         self._motion = (x, y)
@@ -264,7 +266,7 @@ class WindowBackend:
             return
         previous = gl.winget()
         gl.winset(gid)
-        x, y = ctx.origin
+        x, y = window_of(ctx).origin
         gl.winposition(x, x + w - 1, y, y + h - 1)
         if previous != -1:
             gl.winset(previous)
@@ -338,7 +340,7 @@ class WindowBackend:
         ctx = self.session.windows.get(screen.gid)
         if ctx is not None and pointer[0] >= 0:
             self._pointer = (screen.gid, tuple(pointer))
-            x, y = screen_position(pointer, ctx.origin, ctx.height)
+            x, y = screen_position(pointer, window_of(ctx).origin, ctx.height)
             self._motion = (x, y)
         for ev in released:
             self._convert(ev)
