@@ -19,8 +19,12 @@ from vgxsim.state.raster import FLAT, RasterState
 #: Fast-path switch: transform, clip, project, snap and set-up of triangles fused per
 #: chunk and run on the worker threads (CommandBatch.add_object_triangles,
 #: kernels/front.py).  False: the stage-by-stage passes below, which give the same
-#: planes (tests/pipeline/test_fused_front.py compares).
-FUSED_FRONT = True
+#: planes (tests/pipeline/test_fused_front.py compares).  Off by default: on the
+#: shared 2-core machine it measured no gain in CPU time (its point, vertex work on
+#: both threads, shows only in wall time on idle cores) and it adds about 3 s of
+#: compilation to a cold start; bench/report.py times both, switch it on when a quiet
+#: machine shows the gain (DESIGN: fast paths only where a benchmark shows one).
+FUSED_FRONT = False
 
 GUARD_PIXELS = 16384.0  # guard band half-width beyond the viewport centre, pixels
 
