@@ -16,6 +16,8 @@ from vgxsim.kernels.clip import clip_segments, clip_triangles, outcodes, project
 from vgxsim.kernels.lines import count_line_fragments, line_fragments, point_fragments
 from vgxsim.state.raster import FLAT, RasterState
 
+from .texgen import per_w, texture_coords
+
 GUARD_PIXELS = 16384.0  # guard band half-width beyond the viewport centre, pixels
 
 
@@ -79,7 +81,7 @@ def to_clip(obj: np.ndarray, mvp: np.ndarray) -> np.ndarray:
 
 
 def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgba=None,
-                   clip_coords=None, tri_states=None) -> int:
+                   clip_coords=None, tri_states=None, texcoords=None) -> int:
     """Transform, clip, project, snap and queue triangles.
 
     Parameters
@@ -99,6 +101,8 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
     tri_states : (list of RasterState, ndarray shape (T,) int64), optional
         Triangles of several raster states that differ only in what the fragment
         stage reads (``rs`` is the first): each triangle's index into the list.
+    texcoords : ndarray, shape (N, 2), float64, optional
+        Per-vertex (s, t) for coordinates texgen does not generate (default 0).
 
     Returns
     -------
@@ -111,10 +115,18 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
         return 0
     want = rgba is not None
     attr = np.ascontiguousarray(rgba, dtype=np.float64) if want else np.zeros((clip_v.shape[0], 0))
+    textured = want and rs.texture != 0
+    if textured:  # s, t ride through the clipper as two more attributes
+        attr = np.ascontiguousarray(np.concatenate([attr, texture_coords(rs, obj, texcoords)],
+                                                   axis=1))
     gx, gy = _guard(view.viewport)
     out_v, out_attr, out_tris, out_src = clip_triangles(
         np.ascontiguousarray(clip_v), attr, tris, gx, gy)
     xf, yf, zw = _project(out_v, view, rs.subpixel)
+    tex = None
+    if textured:
+        tex = per_w(out_attr[:, 4:6], out_v[:, 3])
+        out_attr = np.ascontiguousarray(out_attr[:, :4])
     flat = None
     if want and (rs.shademodel == FLAT):
         flat = (np.ascontiguousarray(flat_rgba, dtype=np.float64) if flat_rgba is not None
@@ -123,7 +135,10 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
         states, per_tri = tri_states
         return batch.add_triangles_states(xf, yf, zw, out_attr if want else None, out_tris,
                                           out_src, flat, states,
-                                          np.ascontiguousarray(per_tri[out_src]))
+                                          np.ascontiguousarray(per_tri[out_src]), tex=tex)
+    if tex is not None:
+        return batch.add_triangles(xf, yf, zw, out_attr if want else None, out_tris, out_src,
+                                   flat, rs, tex=tex)
     return batch.add_triangles(xf, yf, zw, out_attr if want else None, out_tris, out_src,
                                flat, rs)
 

@@ -100,7 +100,7 @@ def same_geometry(a: DrawState, b: DrawState) -> bool:
     return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
             and a.lmcolor_mode == b.lmcolor_mode and a.concave == b.concave
             and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
-            and needs_colour(ra) == needs_colour(rb)
+            and needs_colour(ra) == needs_colour(rb) and ra.texture == rb.texture
             and same_lighting(a.lighting, b.lighting))
 
 
@@ -111,7 +111,7 @@ def same_projection(a: DrawState, b: DrawState) -> bool:
     ra, rb = a.raster, b.raster
     return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
             and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
-            and needs_colour(ra) == needs_colour(rb))
+            and needs_colour(ra) == needs_colour(rb) and ra.texture == rb.texture)
 
 
 class StateTable:
