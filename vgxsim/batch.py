@@ -315,10 +315,12 @@ class CommandBatch:
         self._maybe_flush()
         return self.ntris - start
 
-    def add_window_triangles(self, xw, yw, zw, col, tris, rs: RasterState, flat_col=None) -> int:
+    def add_window_triangles(self, xw, yw, zw, col, tris, rs: RasterState, flat_col=None,
+                             tex=None) -> int:
         """Queue triangles given in float IRIS window coordinates (library fast path).
 
         Non-finite vertices drop their triangles (documented behaviour for NaN/inf).
+        ``tex`` (Nv, 3): s/w, t/w, 1/w per vertex when ``rs`` has a texture bound.
         """
         xw = np.asarray(xw, np.float64)
         yw = np.asarray(yw, np.float64)
@@ -331,6 +333,9 @@ class CommandBatch:
         src = np.nonzero(keep)[0].astype(np.int64)
         tris = tris[keep]
         xf, yf = snap_window(np.where(finite, xw, 0.0), np.where(finite, yw, 0.0), rs.subpixel)
+        if tex is not None:
+            return self.add_triangles(xf, yf, np.where(finite, zw, 0.0), col, tris, src,
+                                      flat_col, rs, tex=tex)
         return self.add_triangles(xf, yf, np.where(finite, zw, 0.0), col, tris, src,
                                   flat_col, rs)
 
