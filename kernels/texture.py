@@ -1,6 +1,6 @@
 """The texture stage: texture-coordinate planes and the per-fragment texture look-up.
 
-docs/numeric_model.md section 10.  Per vertex the geometry stage hands over s/w,
+docs/numeric_model.md section 13.  Per vertex the geometry stage hands over s/w,
 t/w and 1/w (w the clip-space w); they are interpolated linearly in the window like
 colour (section 4: the same canonical vertex order and plane origin), and each
 fragment divides by the interpolated 1/w, so texture coordinates are
@@ -28,8 +28,10 @@ from vgxsim.state.codes import (
     X_WRAP_S,
     X_WRAP_T,
 )
+from vgxsim.stream.opcodes import CM, CRAW, CSKIP, SYNC, C, N, T, V
 
 from .clip import ONE
+from .decode import _int_payload
 from .options import inline, jit
 
 
@@ -97,7 +99,7 @@ def _texel(texels, base, w, i, j, ch):
 
 @inline
 def _filtered(texels, base, w, i0, i1, j0, j1, al, be, ch):
-    """Bilinear sum of one component, in the order docs/numeric_model.md s. 10 writes."""
+    """Bilinear sum of one component, in the order docs/numeric_model.md s. 13 writes."""
     return ((((1.0 - al) * (1.0 - be)) * _texel(texels, base, w, i0, j0, ch)
              + (al * (1.0 - be)) * _texel(texels, base, w, i1, j0, ch))
             + ((1.0 - al) * be) * _texel(texels, base, w, i0, j1, ch)) \
@@ -175,3 +177,57 @@ def texture_fragment(t_tex, t, x, y, x0, y0, info, env_colour, texels, slot, r, 
                 (fa * t3) / 255.0)
     return ((fr * t0) / 255.0, (fg * t1) / 255.0, (fb * t2) / 255.0,
             (fa * t3) / 255.0)
+
+
+@jit
+def decode_texcoords(ops, nops, fl, st0):
+    """The texture coordinate (t2*) of every vertex of a command stream.
+
+    Walks the stream as :func:`vgxsim.kernels.decode.decode_stream` does (same
+    payload sizes), for streams that hold T ops only.
+
+    Parameters
+    ----------
+    ops, nops, fl
+        As for decode_stream.
+    st0 : ndarray, shape (2,), float64
+        In: s, t current at the start of the stream; out: at its end.
+
+    Returns
+    -------
+    ndarray, shape (V, 2), float64
+    """
+    nv = 0
+    i = 0
+    while i < nops:
+        op = ops[i]
+        if op == V:
+            nv += 1
+        i += 1 + _int_payload(op)
+    out = np.empty((nv, 2))
+    s = st0[0]
+    t = st0[1]
+    iv = 0
+    f = 0
+    i = 0
+    while i < nops:
+        op = ops[i]
+        if op == V:
+            out[iv, 0] = s
+            out[iv, 1] = t
+            iv += 1
+            f += 4
+        elif op == T:
+            s = fl[f]
+            t = fl[f + 1]
+            f += 2
+        elif op == SYNC:
+            f += 7
+        elif op == C or op == CM or op == CSKIP or op == CRAW:
+            f += 4
+        elif op == N:
+            f += 3
+        i += 1 + _int_payload(op)
+    st0[0] = s
+    st0[1] = t
+    return out

@@ -2,7 +2,7 @@
 
 The window maps object x, y to pixel centres (ortho2(-0.5, W - 0.5, ...)); texgen
 planes s = (x + 0.5) / 4, t = (y + 0.5) / 4 put a 2 x 2 texture over pixels 0..3,
-so pixel centre X samples u = s * 2 = (X + 0.5) / 2 (docs/numeric_model.md s. 10).
+so pixel centre X samples u = s * 2 = (X + 0.5) / 2 (docs/numeric_model.md s. 13).
 """
 
 import functools
@@ -119,3 +119,50 @@ def test_packed_words_are_read_in_the_c_layout(win):
     words = [0xFF0000FF, 0xFF00FF00, 0xFFFF0000, 0xFFFFFFFF]
     texdef2d(2, 4, 2, 2, words, 1, (GL.TX_NULL,))
     assert np.array_equal(ctx.texture_unit.textures[2].texels, IMAGE)
+
+
+def test_t2f_coordinates_are_carried_per_vertex(win):
+    """Without texgen each vertex takes the t2f sent before it: (0,0)..(1,1) over
+    the square is the same mapping as the texgen planes above (vertex x / 4)."""
+    from vgxsim.gl._draw import bgnpolygon, endpolygon, t2f, v3f
+
+    ctx = win()
+    texdef2d(1, 4, 2, 2, IMAGE, 1, (GL.TX_NULL,))
+    tevdef(1, 1, (GL.TV_NULL,))  # the default environment: TV_MODULATE
+    texbind(GL.TX_TEXTURE_0, 1)
+    tevbind(GL.TV_ENV0, 1)
+    ctx.colour = (1.0, 1.0, 1.0, 1.0)
+    bgnpolygon()
+    for x, y in ((0, 0), (4, 0), (4, 4), (0, 4)):
+        t2f((x / 4 + 0.125, y / 4 + 0.125))
+        v3f((x, y, 0))
+    endpolygon()
+    ctx.flush()
+    img = ctx.read_rgba().astype(int)
+    for y in range(4):
+        for x in range(4):
+            assert tuple(img[y, x]) == tuple(IMAGE[y // 2, x // 2]), (x, y)
+
+
+def test_t2f_in_a_display_object_is_carried_too(win):
+    from vgxsim.gl._draw import bgnpolygon, endpolygon, t2f, v3f
+    from vgxsim.gl._objects import callobj, closeobj, makeobj
+
+    ctx = win()
+    texdef2d(1, 4, 2, 2, IMAGE, 1, (GL.TX_NULL,))
+    tevdef(1, 1, (GL.TV_NULL,))
+    makeobj(5)
+    bgnpolygon()
+    for x, y in ((0, 0), (4, 0), (4, 4), (0, 4)):
+        t2f((x / 4 + 0.125, y / 4 + 0.125))
+        v3f((x, y, 0))
+    endpolygon()
+    closeobj()
+    texbind(GL.TX_TEXTURE_0, 1)
+    tevbind(GL.TV_ENV0, 1)
+    ctx.colour = (1.0, 1.0, 1.0, 1.0)
+    callobj(5)
+    ctx.flush()
+    img = ctx.read_rgba().astype(int)
+    assert tuple(img[0, 0]) == RED and tuple(img[3, 3]) == WHITE
+    assert tuple(img[0, 3]) == GREEN and tuple(img[3, 0]) == BLUE

@@ -3,7 +3,7 @@
 Random textures (1-4 components, 1..5 texels a side, point or bilinear, repeat or
 clamp, each environment) on random triangles with random perspective (1/w per
 vertex), drawn through every rasterizer path; the naive reference implements
-docs/numeric_model.md section 10 on its own, in Python floats.
+docs/numeric_model.md section 13 on its own, in Python floats.
 """
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Texture coordinates per vertex for the texture stage (docs/numeric_model.md s. 10).
+"""Texture coordinates per vertex for the texture stage (docs/numeric_model.md s. 13).
 
 texgen(3G) TG_LINEAR: a coordinate is the dot product of an object-space plane
 (a, b, c, d) with the vertex (x, y, z, w); a coordinate without generation comes

@@ -4,7 +4,7 @@ Texture mapping is on while a non-zero texture and a non-zero environment are bo
 (texbind(3G), tevbind(3G)); the binding becomes one id in the raster registers
 (``RasterState.texture``), so textured and untextured drawing are different state
 records and untextured drawing is untouched.  What is modelled, and how texels are
-addressed and filtered, is docs/numeric_model.md section 10:
+addressed and filtered, is docs/numeric_model.md section 13:
 
 * texdef2d: 1..4 components, TX_MINFILTER / TX_MAGFILTER TX_POINT or TX_BILINEAR,
   TX_WRAP / TX_WRAP_S / TX_WRAP_T TX_REPEAT or TX_CLAMP.  The MIPMAP filters, TX_TILE,

@@ -525,7 +525,7 @@ def _triangle(fb, verts, state):
         _fragment(fb, state, X, Y, zf, rgba)
 
 
-# ------------------------------------------------------------------ §10 texture
+# ------------------------------------------------------------------ §13 texture
 
 
 def _texel_index(i, n, wrap):
@@ -533,7 +533,7 @@ def _texel_index(i, n, wrap):
 
 
 def _textured(tex, X, Y, rgba):
-    """The texture stage of one fragment (§10): perspective-correct s, t from the
+    """The texture stage of one fragment (§13): perspective-correct s, t from the
     s/w, t/w, 1/w planes, the filter chosen by the screen derivatives, the texel
     look-up and the environment.  Returns float components (rounded by the caller)."""
     b, (ps, pt, pq) = tex

@@ -99,7 +99,7 @@ CBLEND_REPLACE, CBLEND_ADD, CBLEND_SA_MSA, CBLEND_GENERAL = 0, 1, 2, 3
 
 # Columns of a batch's texture table (int64, one row per texture binding used):
 # texel offset into the flat texel array, width, height, components, filters
-# (TEXF_*), wraps (TEXW_*), environment (TEV_*).  docs/numeric_model.md s. 10.
+# (TEXF_*), wraps (TEXW_*), environment (TEV_*).  docs/numeric_model.md s. 13.
 (X_OFFSET, X_WIDTH, X_HEIGHT, X_NC, X_MINFILTER, X_MAGFILTER, X_WRAP_S, X_WRAP_T,
  X_ENV) = range(9)
 X_SIZE = 9
