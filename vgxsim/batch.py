@@ -279,8 +279,9 @@ class CommandBatch:
             # triangle through it): feed it one state run at a time.
             cuts = np.flatnonzero(np.diff(tri_state)) + 1
             bounds = [0, *cuts.tolist(), nt]
+            more = {} if tex is None else {"tex": tex}  # a wrapper may not know tex
             return sum(self.add_triangles(xf, yf, zw, col, tris[a:b], src[a:b], flat_col,
-                                          states[int(tri_state[a])], tex=tex)
+                                          states[int(tri_state[a])], **more)
                        for a, b in zip(bounds[:-1], bounds[1:], strict=True))
         rs = states[0]
         seen: dict[int, tuple[int, int]] = {}  # id -> (table index, cull): one look-up each
