@@ -166,3 +166,15 @@ def test_t2f_in_a_display_object_is_carried_too(win):
     img = ctx.read_rgba().astype(int)
     assert tuple(img[0, 0]) == RED and tuple(img[3, 3]) == WHITE
     assert tuple(img[0, 3]) == GREEN and tuple(img[3, 0]) == BLUE
+
+
+def test_an_sgi_image_written_and_read_back_textures_the_square(win, tmp_path):
+    """SGI .rgb through Pillow (vgxsim.formats.sgi): rows come back top first, so the
+    texture is the image flipped (texdef2d's row 0 is the bottom row)."""
+    from vgxsim.formats.sgi import read_rgb, write_rgb
+
+    path = tmp_path / "t.rgb"
+    write_rgb(path, IMAGE[::-1])  # a file shows the top row first
+    image = read_rgb(path)[::-1]
+    img = textured(win(), image=np.ascontiguousarray(image))
+    assert tuple(img[0, 0]) == RED and tuple(img[3, 3]) == WHITE
