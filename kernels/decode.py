@@ -31,6 +31,7 @@ from vgxsim.stream.opcodes import (
     SYNC,
     C,
     N,
+    T,
     V,
 )
 
@@ -149,6 +150,8 @@ def decode_stream(ops, nops, fl, attrs):
             isw += 1
         elif op == STATE:
             state = ops[i + 1]
+        elif op == T:
+            f += 2  # texture coordinate: kernels/texture.py decode_texcoords reads it
         i += 1 + _int_payload(op)
     attrs[0], attrs[1], attrs[2], attrs[3] = r, g, b, a
     attrs[4], attrs[5], attrs[6] = nx, ny, nz

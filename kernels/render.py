@@ -53,6 +53,7 @@ from vgxsim.state.codes import (
     S_SX1,
     S_SY0,
     S_SY1,
+    S_TEXTURE,
     S_WMPACK,
     S_ZFUNC,
     WORK_FRAGMENTS,
@@ -68,12 +69,14 @@ from .fragment import (
     combine,
     fragment,
     pack_rgba,
+    round_c,
     round_z,
     wrap_z24,
     write_z,
 )
 from .options import inline_ir, jit
 from .raster import covers, row_span
+from .texture import texture_fragment
 from .tiles import (
     TB_VALID,
     TILE_FULL,
@@ -122,7 +125,7 @@ def bin_primitives(py0, py1, nprims, band_shift, nbands):
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tb, runs, work,
+    tb, runs, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -223,7 +226,7 @@ def _triangle_rows(
                         zbuf[uy, ux] = wrap_z24(zi)
             else:
                 _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
-                             edge_mode and not full, st, dv, tab, front, back, zbuf, sten)
+                             edge_mode and not full, st, dv, tab, front, back, zbuf, sten, tex)
     work[WORK_FRAGMENTS] += tested
     if dv[D_STENCIL] != 0 and mode != MODE_COLOUR:
         work[WORK_STENCIL_WRITES] += tested
@@ -233,11 +236,14 @@ def _triangle_rows(
 
 @jit
 def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
-                 edge_mode, st, dv, tab, front, back, zbuf, sten):
+                 edge_mode, st, dv, tab, front, back, zbuf, sten, tex):
     """The general per-fragment path for one row (any state; the edge-function
     rasterizer when ``edge_mode``).  Compiled out of line: it is the rare path, and
-    keeping it out of the band kernel shortens that kernel's cold compile."""
+    keeping it out of the band kernel shortens that kernel's cold compile.
+    ``tex`` = (t_tex, info, env_colour, texels): the texture stage's planes and
+    table, read when the state's S_TEXTURE slot is non-zero."""
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
+    slot = st[S_TEXTURE] - 1
     for x in range(xl, xr + 1):
         if edge_mode and not covers(edge, x, y):
             continue
@@ -245,7 +251,14 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour
         rgba = 0
         if colour:
             dx = x - x0
-            rgba = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
+            if slot >= 0:
+                r, g, b, a = texture_fragment(
+                    tex[0], t, x, y, x0, y0, tex[1], tex[2], tex[3], slot,
+                    round_c(ra + rdx * dx), round_c(ga + gdx * dx), round_c(ba + bdx * dx),
+                    round_c(aa + adx * dx))
+                rgba = pack_rgba(r, g, b, a)
+            else:
+                rgba = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
         fragment(x, y, zi, rgba, st, dv, tab, front, back, zbuf, sten)
 
 
@@ -448,7 +461,7 @@ def render_bands(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    edge_mode, general_only, skip_tiles, cover_blocks, work,
+    edge_mode, general_only, skip_tiles, cover_blocks, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -490,6 +503,10 @@ def render_bands(
         test; tiles fully inside a triangle (switches, on by default).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
+    tex : tuple
+        (t_tex (T, 3, 3) float64 texture-coordinate planes, info (K, X_SIZE) int64,
+        env_colour (K, 4) float64, texels (N,) uint32): the texture stage
+        (:mod:`.texture`, vgxsim.state.textures.pack_bindings).
     """
     band_h = 1 << band_shift
     nbands = starts.shape[0] - 1
@@ -511,7 +528,7 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     states[s], derived[s], tables[s],
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, tb, runs, bw,
+                    cover_blocks, tb, runs, bw, tex,
                 )
             elif kind == KIND_FRAGMENTS:
                 s = r_state[ref]

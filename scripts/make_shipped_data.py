@@ -104,7 +104,7 @@ END
 TEXTURED = """\
 ShadowScene
 # A textured floor (checker.rgb on the floor's x-z plane) under a cube and a ball.
-# Texture application in the raster is pending: the texture is read and kept.
+# The texture is modulated onto every pass (texgen TG_LINEAR: tex_sparams/tparams).
 WINDOW 1 40 0.8284271247461901
 LOOKAT 3 5 7.5  0 0.6 0
 XMODEL ../models/floor.glo

@@ -17,6 +17,7 @@ from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
 from vgxsim.kernels.render import bin_primitives, render_bands
 from vgxsim.kernels.setup import setup_triangles, setup_triangles_states
+from vgxsim.kernels.texture import setup_texture_planes
 from vgxsim.state.codes import (
     CLEAR_COLOUR,
     CLEAR_STENCIL,
@@ -28,6 +29,7 @@ from vgxsim.state.codes import (
     ROW_SIZE,
     S_DRAW_BACK,
     S_DRAW_FRONT,
+    S_TEXTURE,
     WORK_BLOCKS_COVERED,
     WORK_FRAGMENTS,
     WORK_SIZE,
@@ -37,6 +39,7 @@ from vgxsim.state.codes import (
 from vgxsim.state.derive import derive_states
 from vgxsim.state.planes import Framebuffer
 from vgxsim.state.raster import RasterState
+from vgxsim.state.textures import pack_bindings
 
 __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL", "WORK_NAMES"]
 
@@ -148,6 +151,7 @@ class CommandBatch:
         self.t_zlim = np.zeros((64, 2), np.int64)
         self.t_col = np.zeros((64, 4, 3), np.float64)
         self.t_state = np.zeros(64, np.int32)
+        self.t_tex = np.zeros((64, 3, 3), np.float64)  # texture planes (kernels/texture.py)
         self.f_xy = np.zeros((64, 2), np.int64)
         self.f_z = np.zeros(64, np.int64)
         self.f_rgba = np.zeros(64, np.int64)
@@ -196,7 +200,8 @@ class CommandBatch:
             self.flush()
 
     # -- primitives ---------------------------------------------------------------
-    def add_triangles(self, xf, yf, zw, col, tris, src, flat_col, rs: RasterState) -> int:
+    def add_triangles(self, xf, yf, zw, col, tris, src, flat_col, rs: RasterState,
+                      tex=None) -> int:
         """Set up and queue triangles given in fixed-point window coordinates.
 
         Parameters
@@ -211,6 +216,8 @@ class CommandBatch:
         flat_col : ndarray, shape (Ns, 4), float64 or None
             Last-vertex colour of each source primitive (flat shading).
         rs : RasterState
+        tex : ndarray, shape (Nv, 3), float64, optional
+            s/w, t/w, 1/w per vertex when ``rs`` has a texture bound.
 
         Returns
         -------
@@ -250,6 +257,7 @@ class CommandBatch:
         else:
             self.ntris = setup_triangles(xf, yf, zw, colv, tris, src, flatv, s, rs.cull, flat,
                                          want_colour, *out, start)
+        self._texture_planes(xf, yf, tex, tris, start)
         refs = np.arange(start, self.ntris, dtype=np.int64)
         # Bin by the rows the triangle can touch inside the raster rectangle, so bands
         # outside the scissor (a light's scissor rectangle) never see it.
@@ -262,8 +270,17 @@ class CommandBatch:
         self._maybe_flush()
         return self.ntris - start
 
+    def _texture_planes(self, xf, yf, tex, tris, start) -> None:
+        """Texture-coordinate planes of the triangles just set up at ``start``."""
+        if tex is None:
+            return
+        self.t_tex = _grow(self.t_tex, start + tris.shape[0])
+        setup_texture_planes(xf, yf, np.ascontiguousarray(tex, np.float64), tris,
+                             self.t_tex, start)
+
     def add_triangles_states(self, xf, yf, zw, col, tris, src, flat_col,
-                             states: list[RasterState], tri_state: np.ndarray) -> int:
+                             states: list[RasterState], tri_state: np.ndarray,
+                             tex=None) -> int:
         """:meth:`add_triangles` for triangles of several raster states at once.
 
         Parameters
@@ -282,8 +299,9 @@ class CommandBatch:
             # triangle through it): feed it one state run at a time.
             cuts = np.flatnonzero(np.diff(tri_state)) + 1
             bounds = [0, *cuts.tolist(), nt]
+            more = {} if tex is None else {"tex": tex}  # a wrapper may not know tex
             return sum(self.add_triangles(xf, yf, zw, col, tris[a:b], src[a:b], flat_col,
-                                          states[int(tri_state[a])])
+                                          states[int(tri_state[a])], **more)
                        for a, b in zip(bounds[:-1], bounds[1:], strict=True))
         rs = states[0]
         seen: dict[int, tuple[int, int]] = {}  # id -> (table index, cull): one look-up each
@@ -311,6 +329,7 @@ class CommandBatch:
         self.ntris = setup_triangles_states(
             xf, yf, zw, colv, tris, src, flatv, idx, culls, flat, want_colour,
             self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state, start)
+        self._texture_planes(xf, yf, tex, tris, start)
         refs = np.arange(start, self.ntris, dtype=np.int64)
         self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
                         self.t_box[start:self.ntris, 3])
@@ -434,10 +453,12 @@ class CommandBatch:
         self._maybe_flush()
         return used
 
-    def add_window_triangles(self, xw, yw, zw, col, tris, rs: RasterState, flat_col=None) -> int:
+    def add_window_triangles(self, xw, yw, zw, col, tris, rs: RasterState, flat_col=None,
+                             tex=None) -> int:
         """Queue triangles given in float IRIS window coordinates (library fast path).
 
         Non-finite vertices drop their triangles (documented behaviour for NaN/inf).
+        ``tex`` (Nv, 3): s/w, t/w, 1/w per vertex when ``rs`` has a texture bound.
         """
         xw = np.asarray(xw, np.float64)
         yw = np.asarray(yw, np.float64)
@@ -450,6 +471,9 @@ class CommandBatch:
         src = np.nonzero(keep)[0].astype(np.int64)
         tris = tris[keep]
         xf, yf = snap_window(np.where(finite, xw, 0.0), np.where(finite, yw, 0.0), rs.subpixel)
+        if tex is not None:
+            return self.add_triangles(xf, yf, np.where(finite, zw, 0.0), col, tris, src,
+                                      flat_col, rs, tex=tex)
         return self.add_triangles(xf, yf, np.where(finite, zw, 0.0), col, tris, src,
                                   flat_col, rs)
 
@@ -516,6 +540,7 @@ class CommandBatch:
             states = states.copy()
             states[:, S_DRAW_FRONT] |= states[:, S_DRAW_BACK]
             states[:, S_DRAW_BACK] = 0
+        states, tex_table = _texture_table(states)
         derived, tables = derive_states(states, fb.config.stencil, True, fb.z is not None)
         front, back, z, st = fb.kernel_planes()
         height = fb.height
@@ -530,7 +555,7 @@ class CommandBatch:
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
-            self.skip_tiles, self.cover_blocks, work,
+            self.skip_tiles, self.cover_blocks, work, (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
         if nthreads == 1:
@@ -550,3 +575,15 @@ class CommandBatch:
 
 
 _ADD_TRIANGLES = CommandBatch.add_triangles
+
+
+def _texture_table(states: np.ndarray):
+    """States with S_TEXTURE rewritten from binding ids to 1 + rows of the batch's
+    texture table, and that table (vgxsim.state.textures.pack_bindings)."""
+    col = states[:, S_TEXTURE]
+    if not col.any():
+        return states, pack_bindings([])
+    ids = sorted({int(v) for v in col if v})
+    states = states.copy()
+    states[:, S_TEXTURE] = [0 if v == 0 else ids.index(int(v)) + 1 for v in col]
+    return states, pack_bindings(ids)

@@ -146,6 +146,10 @@ def _queue_triangles(batch, group, rs):
     col = np.array([v[3] for v in verts], np.float64).reshape(-1, 4)
     tris = np.arange(len(verts), dtype=np.int64).reshape(-1, 3)
     flat_col = col[tris[:, 2]].copy()  # flat shading: each triangle's last vertex
+    if rs.texture and len(verts[0]) > 4:  # textured: (s/w, t/w, 1/w) per vertex
+        tex = np.array([v[4] for v in verts], np.float64).reshape(-1, 3)
+        batch.add_window_triangles(xw, yw, zw, col, tris, rs, flat_col=flat_col, tex=tex)
+        return
     batch.add_window_triangles(xw, yw, zw, col, tris, rs, flat_col=flat_col)
 
 

@@ -16,6 +16,8 @@ from vgxsim.kernels.clip import NO_PLANES, clip_segments, clip_triangles, outcod
 from vgxsim.kernels.lines import count_line_fragments, line_fragments, line_steps, point_fragments
 from vgxsim.state.raster import FLAT, RasterState
 
+from .texgen import per_w, texture_coords
+
 #: Fast-path switch: transform, clip, project, snap and set-up of triangles fused per
 #: chunk and run on the worker threads (CommandBatch.add_object_triangles,
 #: kernels/front.py).  False: the stage-by-stage passes below, which give the same
@@ -93,7 +95,7 @@ def to_clip(obj: np.ndarray, mvp: np.ndarray) -> np.ndarray:
 
 
 def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgba=None,
-                   clip_coords=None, tri_states=None) -> int:
+                   clip_coords=None, tri_states=None, texcoords=None) -> int:
     """Transform, clip, project, snap and queue triangles.
 
     Parameters
@@ -113,6 +115,8 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
     tri_states : (list of RasterState, ndarray shape (T,) int64), optional
         Triangles of several raster states that differ only in what the fragment
         stage reads (``rs`` is the first): each triangle's index into the list.
+    texcoords : ndarray, shape (N, 2), float64, optional
+        Per-vertex (s, t) for coordinates texgen does not generate (default 0).
 
     Returns
     -------
@@ -123,14 +127,23 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
     if tris.shape[0] == 0:
         return 0
     want = rgba is not None
-    if FUSED_FRONT and clip_coords is None and _plain_batch(batch):
+    textured = want and rs.texture != 0
+    # The fused pass carries colour only: textured triangles take the passes below.
+    if FUSED_FRONT and clip_coords is None and not textured and _plain_batch(batch):
         return _draw_fused(batch, rs, view, obj, rgba, tris, flat_rgba, tri_states)
     clip_v = _tame(clip_coords) if clip_coords is not None else to_clip(obj, view.mvp)
     attr = np.ascontiguousarray(rgba, dtype=np.float64) if want else np.zeros((clip_v.shape[0], 0))
+    if textured:  # s, t ride through the clipper as two more attributes
+        attr = np.ascontiguousarray(np.concatenate([attr, texture_coords(rs, obj, texcoords)],
+                                                   axis=1))
     gx, gy = _guard(view.viewport)
     out_v, out_attr, out_tris, out_src = clip_triangles(
         np.ascontiguousarray(clip_v), attr, tris, gx, gy, view.user_planes)
     xf, yf, zw = _project(out_v, view, rs.subpixel)
+    tex = None
+    if textured:
+        tex = per_w(out_attr[:, 4:6], out_v[:, 3])
+        out_attr = np.ascontiguousarray(out_attr[:, :4])
     flat = None
     if want and (rs.shademodel == FLAT):
         flat = (np.ascontiguousarray(flat_rgba, dtype=np.float64) if flat_rgba is not None
@@ -139,7 +152,10 @@ def draw_triangles(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_
         states, per_tri = tri_states
         return batch.add_triangles_states(xf, yf, zw, out_attr if want else None, out_tris,
                                           out_src, flat, states,
-                                          np.ascontiguousarray(per_tri[out_src]))
+                                          np.ascontiguousarray(per_tri[out_src]), tex=tex)
+    if tex is not None:
+        return batch.add_triangles(xf, yf, zw, out_attr if want else None, out_tris, out_src,
+                                   flat, rs, tex=tex)
     return batch.add_triangles(xf, yf, zw, out_attr if want else None, out_tris, out_src,
                                flat, rs)
 

@@ -41,7 +41,7 @@ from collections.abc import Callable
 import numpy as np
 
 from vgxsim.pipeline.decode import drain
-from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, V
+from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, T, V
 from vgxsim.stream.recorder import MAX_STREAM_OPS
 
 from ._core import (
@@ -234,6 +234,10 @@ def apply_ops(ctx, name: str, args: tuple, ops) -> None:
             ctx.last_sent = "normal"
         elif tag == "t":
             ctx.texcoord = op[1]
+            # Recorded only when called: untextured streams carry nothing more.
+            ctx.stream.ops.append(T)
+            ctx.stream.fl.extend(op[1])
+            ctx.stream.has_texcoords = True
         elif tag == "g":
             ctx.gpos = op[1]
         elif tag == "bgn":

@@ -50,7 +50,7 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim import GL
-from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, V
+from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, T, V
 from vgxsim.stream.opcodes import C as C_OP
 from vgxsim.stream.recorder import Chunk
 
@@ -243,6 +243,8 @@ class ObjectRecorder:
             elif tag == "swap":
                 ch.ops.append(SWAP)
             elif tag == "t":
+                ch.ops.append(T)
+                ch.fl.extend(op[1])
                 ch.texcoord = op[1]
             elif tag == "g":
                 ch.gpos = op[1]
@@ -650,6 +652,7 @@ def splice(ctx, ch: Chunk) -> None:
         ctx.last_sent = "normal"
     if ch.texcoord is not None:
         ctx.texcoord = ch.texcoord
+        st.has_texcoords = True
     if ch.gpos is not None:
         ctx.gpos = ch.gpos
     st.colour = None  # the decoder's attributes are the chunk's now: sync anew

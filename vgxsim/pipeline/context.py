@@ -193,7 +193,8 @@ class Context:
         return self.states.records[self.states.intern(self)]
 
     def draw_arrays(self, kind: str, obj, colours=None, normals=None, lit=None,
-                    swaps=(), indices=None, provoking=None, pattern_offset: int = 0) -> None:
+                    swaps=(), indices=None, provoking=None, pattern_offset: int = 0,
+                    texcoords=None) -> None:
         """Draw one primitive (or a mesh, with ``indices``) from arrays.
 
         Parameters
@@ -218,11 +219,15 @@ class Context:
             Lines only: line-style position at the first vertex (move/draw continue
             the pattern, docs/numeric_model.md s. 5).  ``self.linestyle_pos`` is left
             at the position after the last segment.
+        texcoords : ndarray, shape (N, 2), optional
+            Triangles only: per-vertex (s, t), as t2* gives them (docs/numeric_model.md
+            s. 13; texgen replaces the coordinates it generates).
         """
         if len(self.stream.ops):
             drain(self)  # what the stream holds was drawn first
         pipeline_draw_arrays(self, self.draw_state(), self.lmcolor_set, kind, obj, colours,
-                             normals, lit, swaps, indices, provoking, pattern_offset)
+                             normals, lit, swaps, indices, provoking, pattern_offset,
+                             texcoords=texcoords)
 
     # -- clears, readback, frames ------------------------------------------------------
     def clear_planes(self, planes: int, colour: int = 0, z: int = ZMAX, stencil: int = 0) -> None:

@@ -14,6 +14,7 @@ import numpy as np
 from vgxsim.geometry import assembly
 from vgxsim.geometry.transform import apply
 from vgxsim.kernels.decode import decode_stream
+from vgxsim.kernels.texture import decode_texcoords
 from vgxsim.stream.opcodes import (
     CLOSEDLINE,
     LINE,
@@ -53,6 +54,7 @@ def drain(ctx) -> None:
     ops = np.array(s.ops, dtype=np.int64)
     fl = np.array(s.fl, dtype=np.float64) if s.fl else np.zeros(0)
     pos, col, nrm, sent, prims, swaps = decode_stream(ops, cut_ops, fl, s.attrs)
+    tc = decode_texcoords(ops, cut_ops, fl, s.tex_attrs) if s.has_texcoords else None
     if cut_ops == nops:
         s.ops = []
         s.fl = []
@@ -61,7 +63,7 @@ def drain(ctx) -> None:
         s.fl = s.fl[cut_fl:]
         s.open_ops, s.open_fl = 0, 0
     records = ctx.states.records
-    _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps)
+    _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc)
     if ctx.prim is None:
         ctx.states.clear()
         s.attrs[9] = -1.0
@@ -88,7 +90,7 @@ def _select_prims(ctx, records, pos, prims, swaps) -> None:
                         None)
 
 
-def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
+def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None) -> None:
     npr = prims.shape[0]
     if npr == 0:
         return
@@ -135,7 +137,8 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
                 name = "polygon" if r[0] in (POLYGON, PMV) else NAME_OF[r[0]]
                 jobs.append((draw_arrays, (ctx, st, bool(lms), name, pos[ps], col[ps], nrm[ps],
                                            _lit(st, sent[ps])),
-                             {"swaps": swaps[r[5]:r[6]].tolist(), "private": True}))
+                             {"swaps": swaps[r[5]:r[6]].tolist(), "private": True,
+                              "texcoords": None if tc is None else tc[ps]}))
             continue
         tris, prov, tri_prim = _group_triangles(prims[a:b], v0, swaps)
         tri_states = None
@@ -145,16 +148,16 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps) -> None:
         normals = nrm[sl] if state.lighting is not None else None
         cols = col[sl] if _wants_colour(state) else None
         lit = lit if normals is not None else None
-        kw = {}
+        kw = {"texcoords": None if tc is None else tc[sl]}
         if draw.BATCH_LIGHTING and cols is not None and normals is not None:
-            kw = {"lit_rgba": len(lit_groups)}  # filled in once all groups are known
+            kw["lit_rgba"] = len(lit_groups)  # filled in once all groups are known
             lit_groups.append((state, bool(lms), pos[sl], normals, cols, lit))
         jobs.append((defer_triangles, (ctx, state, bool(lms), pos[sl], cols, normals, lit,
                                        tris, prov, tri_states), kw))
     shaded = draw.shade_groups(lit_groups) if len(lit_groups) > 1 else [None] * len(lit_groups)
     for fn, args, kw in jobs:
         if "lit_rgba" in kw:
-            kw = {"lit_rgba": shaded[kw["lit_rgba"]]}
+            kw = {**kw, "lit_rgba": shaded[kw["lit_rgba"]]}
         fn(*args, **kw)
 
 

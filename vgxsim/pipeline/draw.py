@@ -185,7 +185,7 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
 
 
 def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
-                    tris, prov, tri_states=None, lit_rgba=None) -> None:
+                    tris, prov, tri_states=None, lit_rgba=None, texcoords=None) -> None:
     """Light one primitive's (or one group's) vertices and queue its triangles on
     ``ctx`` for a geometry pass shared with the queued ones that project alike.
 
@@ -193,13 +193,16 @@ def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals
     records that :func:`~.records.same_geometry` joins; ``state`` is one of them.
     Lighting is per vertex, so lighting each part on its own gives the colours
     lighting them together would.  ``lit_rgba``: the colours already lit
-    (:func:`shade_groups`).
+    (:func:`shade_groups`).  ``texcoords`` (N, 2): t2* per vertex, or None.
     """
+    n_in = obj.shape[0]
     if lit_rgba is not None:
         rgba = vertex_colour_stage(state, obj, lit_rgba)  # two-sided is never batched
     else:
         obj, rgba, tris, prov = _lit_colours(state, lmcolor_set, obj, cols, normals, lit,
                                              tris, prov)
+    if texcoords is not None and obj.shape[0] != n_in:  # two-sided: vertices doubled
+        texcoords = np.concatenate([texcoords, texcoords])
     pend = ctx.pending_triangles
     if pend is not None and not (same_state(pend.state, state) or (
             MERGE_FRAGMENT_STATES and same_projection(pend.state, state))):
@@ -214,7 +217,7 @@ def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals
     elif state.raster is not pend.state.raster:
         rasters = ([state.raster], np.zeros(tris.shape[0], np.int64))
     base = pend.n
-    pend.parts.append((obj, rgba, tris + base, prov + base, rasters))
+    pend.parts.append((obj, rgba, tris + base, prov + base, rasters, texcoords))
     pend.n = base + obj.shape[0]
 
 
@@ -256,9 +259,13 @@ def commit_triangles(ctx) -> None:
     tris = joined(2)
     prov = joined(3)
     flat = None if (rgba is None or rs.shademodel != FLAT) else rgba[prov]
+    texcoords = None
+    if any(p[5] is not None for p in parts):  # t2* per vertex (0, 0 where not sent)
+        texcoords = np.concatenate([p[5] if p[5] is not None else np.zeros((p[0].shape[0], 2))
+                                    for p in parts])
     draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth,
                                                state.user_planes), obj,
-                   rgba, tris, flat, tri_states=tri_states)
+                   rgba, tris, flat, tri_states=tri_states, texcoords=texcoords)
 
 
 def as_homogeneous(obj) -> np.ndarray:
@@ -274,11 +281,12 @@ def as_homogeneous(obj) -> np.ndarray:
 
 def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colours=None,
                 normals=None, lit=None, swaps=(), indices=None, provoking=None,
-                pattern_offset: int = 0, private: bool = False) -> None:
+                pattern_offset: int = 0, private: bool = False, texcoords=None) -> None:
     """Draw one primitive (or a mesh, with ``indices``) with ``state``.
 
     See :meth:`vgxsim.pipeline.context.Context.draw_arrays` for the parameters;
-    ``private`` says the arrays are already private float64 (N, 4) copies.
+    ``private`` says the arrays are already private float64 (N, 4) copies;
+    ``texcoords`` (N, 2) are per-vertex t2* coordinates (triangles only).
     """
     if not private:
         obj = np.asarray(obj, dtype=np.float64)
@@ -310,7 +318,10 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
         nrm = None
         if lighting:
             nrm = normals if private else np.array(normals, np.float64)
-        defer_triangles(ctx, state, lmcolor_set, obj, cols, nrm, litm, tris, prov)
+        if texcoords is not None:
+            texcoords = np.array(texcoords, np.float64).reshape(n, 2)
+        defer_triangles(ctx, state, lmcolor_set, obj, cols, nrm, litm, tris, prov,
+                        texcoords=texcoords)
         return
     commit_triangles(ctx)
     rgba = None

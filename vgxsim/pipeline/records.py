@@ -160,7 +160,7 @@ def same_geometry(a: DrawState, b: DrawState) -> bool:
     return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
             and a.lmcolor_mode == b.lmcolor_mode and a.concave == b.concave
             and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
-            and needs_colour(ra) == needs_colour(rb)
+            and needs_colour(ra) == needs_colour(rb) and ra.texture == rb.texture
             and same_lighting(a.lighting, b.lighting)
             and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
             and a.depthcue == b.depthcue and a.resetls == b.resetls)
@@ -173,7 +173,7 @@ def same_projection(a: DrawState, b: DrawState) -> bool:
     ra, rb = a.raster, b.raster
     return (a.mvp is b.mvp and a.viewport == b.viewport and a.depth == b.depth
             and ra.subpixel == rb.subpixel and ra.shademodel == rb.shademodel
-            and needs_colour(ra) == needs_colour(rb)
+            and needs_colour(ra) == needs_colour(rb) and ra.texture == rb.texture
             and same_planes(a.user_planes, b.user_planes))
 
 

@@ -602,6 +602,10 @@ class MesaPeer:
             GL.glCullFace(face)
 
         GL.glShadeModel(GL.GL_FLAT if state.shademodel == FLAT else GL.GL_SMOOTH)
+        if state.texture or (self._state is not None and self._state.texture):
+            from .mesa_texture import apply_texture
+
+            apply_texture(GL, state, self.__dict__.setdefault("_textures", {}))
         self._state = state
 
     # -- rendering -------------------------------------------------------
@@ -643,7 +647,9 @@ class MesaPeer:
                         GL.glBegin(GL.GL_TRIANGLES)
                         in_begin = True
                     sub = bool(state.subpixel)
-                    for xw, yw, zw, rgba in verts:
+                    for xw, yw, zw, rgba, *tex in verts:
+                        if tex:  # (s/w, t/w, 1/w): see mesa_texture
+                            GL.glTexCoord4d(tex[0][0], tex[0][1], 0.0, tex[0][2])
                         GL.glColor4d(*rgba)
                         GL.glVertex3d(
                             _snap(xw, sub) + 0.5, _snap(yw, sub) + 0.5, iris_z_to_gl(zw)

@@ -42,8 +42,13 @@ from vgxsim.state.codes import (
     OP_KEEP,
     OP_REPLACE,
     OP_ZERO,
+    TEV_BLEND,
+    TEV_DECAL,
+    TEXF_BILINEAR,
+    TEXW_CLAMP,
 )
 from vgxsim.state.raster import RasterState
+from vgxsim.state.textures import binding
 
 __all__ = [
     "AC_ACCUMULATE",
@@ -505,13 +510,75 @@ def _triangle(fb, verts, state):
     else:
         flat = None
         c_planes = [_Plane(canon, [float(verts[i][3][k]) * 255.0 for i in order]) for k in range(4)]
+    tex = None
+    if state.texture != 0 and len(verts[0]) > 4:
+        tex = (binding(state.texture),
+               [_Plane(canon, [float(verts[i][4][k]) for i in order]) for k in range(3)])
     for X, Y in pixels:
         zf = _clamp(_round(z_plane.at(X, Y)), z_lo, z_hi)
         if c_planes is None:
             rgba = flat
         else:
             rgba = tuple(_clamp(_round(p.at(X, Y)), 0, 255) for p in c_planes)
+        if tex is not None:
+            rgba = tuple(_clamp(_round(c), 0, 255) for c in _textured(tex, X, Y, rgba))
         _fragment(fb, state, X, Y, zf, rgba)
+
+
+# ------------------------------------------------------------------ §13 texture
+
+
+def _texel_index(i, n, wrap):
+    return _clamp(i, 0, n - 1) if wrap == TEXW_CLAMP else i % n
+
+
+def _textured(tex, X, Y, rgba):
+    """The texture stage of one fragment (§13): perspective-correct s, t from the
+    s/w, t/w, 1/w planes, the filter chosen by the screen derivatives, the texel
+    look-up and the environment.  Returns float components (rounded by the caller)."""
+    b, (ps, pt, pq) = tex
+    texture = b.texture
+    h, w = texture.texels.shape[:2]
+    q = pq.at(X, Y)
+    if q == 0.0:
+        q = 1e-300
+    s = ps.at(X, Y) / q
+    t = pt.at(X, Y) / q
+    fil = texture.magfilter
+    if texture.minfilter != texture.magfilter:
+        dudx = w * (ps.dadx - s * pq.dadx) / q
+        dvdx = h * (pt.dadx - t * pq.dadx) / q
+        dudy = w * (ps.dady - s * pq.dady) / q
+        dvdy = h * (pt.dady - t * pq.dady) / q
+        if max(dudx * dudx + dvdx * dvdx, dudy * dudy + dvdy * dvdy) > 1.0:
+            fil = texture.minfilter
+    u = min(max(s * w, -1e15), 1e15)
+    v = min(max(t * h, -1e15), 1e15)
+    texels = texture.texels
+    if fil == TEXF_BILINEAR:
+        u -= 0.5
+        v -= 0.5
+        i0, j0 = math.floor(u), math.floor(v)
+        al, be = u - i0, v - j0
+        ia, ib = (_texel_index(i, w, texture.wrap_s) for i in (i0, i0 + 1))
+        ja, jb = (_texel_index(j, h, texture.wrap_t) for j in (j0, j0 + 1))
+        c = [((((1.0 - al) * (1.0 - be)) * float(texels[ja, ia, k])
+               + (al * (1.0 - be)) * float(texels[ja, ib, k]))
+              + ((1.0 - al) * be) * float(texels[jb, ia, k]))
+             + (al * be) * float(texels[jb, ib, k]) for k in range(4)]
+    else:
+        i = _texel_index(math.floor(u), w, texture.wrap_s)
+        j = _texel_index(math.floor(v), h, texture.wrap_t)
+        c = [float(texels[j, i, k]) for k in range(4)]
+    f = [float(x) for x in rgba]
+    mode = b.env.mode
+    if mode == TEV_DECAL:
+        return tuple((f[k] * (255.0 - c[3]) + c[k] * c[3]) / 255.0 for k in range(3)) + (f[3],)
+    if mode == TEV_BLEND:
+        cc = [float(x) * 255.0 for x in b.env.colour]
+        return tuple((f[k] * (255.0 - c[k]) + cc[k] * c[k]) / 255.0
+                     for k in range(3)) + ((f[3] * c[3]) / 255.0,)
+    return tuple((f[k] * c[k]) / 255.0 for k in range(4))
 
 
 def _ydiv_round(num, den):
@@ -657,7 +724,8 @@ def render(fb, commands: Iterable[Sequence]):
     fb : NaiveFramebuffer
         Target planes, modified in place.
     commands : iterable of tuple
-        ``("triangle", verts, state)`` with three ``(xw, yw, zw, (r, g, b, a))``;
+        ``("triangle", verts, state)`` with three ``(xw, yw, zw, (r, g, b, a))``
+        (and, when ``state.texture`` is set, a fifth item ``(s/w, t/w, 1/w)``);
         ``("line", verts, state[, pattern_start])`` with two vertices;
         ``("point", vert, state)``; ``("clear", planes, values, state)`` with
         ``planes`` a subset of {"color", "z", "stencil"} and ``values`` a dict of

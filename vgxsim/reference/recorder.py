@@ -267,8 +267,11 @@ def record_window_triangles() -> Iterator[Recording]:
     orig_clear = CommandBatch.add_clear
     orig_frags = CommandBatch.add_fragments
 
-    def add_triangles(self, xf, yf, zw, col, tris, src, flat_col, rs):
+    def add_triangles(self, xf, yf, zw, col, tris, src, flat_col, rs, tex=None):
+        # Texture coordinates are drawn but not recorded (replays are untextured).
         rec._add_triangles(self, xf, yf, zw, col, tris, src, flat_col, rs)
+        if tex is not None:
+            return orig_tris(self, xf, yf, zw, col, tris, src, flat_col, rs, tex=tex)
         return orig_tris(self, xf, yf, zw, col, tris, src, flat_col, rs)
 
     def add_clear(self, planes, colour, z, stencil, rs):

@@ -58,6 +58,16 @@ matl_emitambient = MATL_EMITAMBIENT
 matl_diffspec = MATL_DIFFSPEC
 
 MODES = ("objects", "volumes", "mask", "shadows")
+
+# README: "all textures are mapped onto the x-z plane in object space using the
+# texgen command.  The mapping is specified by the arrays tex_sparams and
+# tex_tparams in "shadows.c"."  Their values are not in the README; these give one
+# repeat of the image per 4 units of x and of z (our choice).  Objects here are
+# placed before drawing, so their "object space" is the scene's.
+tex_sparams = (0.25, 0.0, 0.0, 0.0)
+tex_tparams = (0.0, 0.0, 0.25, 0.0)
+TEXTURE_PROPS = (TX_MINFILTER, TX_BILINEAR, TX_MAGFILTER, TX_BILINEAR, TX_WRAP, TX_REPEAT,
+                 TX_NULL)
 EDGES = ("silhouette", "all")
 SIGNS = ("article", "screen")
 
@@ -153,6 +163,7 @@ class Shadows:
         self.MYZERO = 128  # set from getgdesc(GD_BITS_STENCIL) by config()
         self.stencil_bits = 8
         self._geometry: dict[int, int] = {}  # id(object) -> display object
+        self.texture: list[int] = []  # per object: texdef2d index, 0 for none
 
     # -- set-up (elided in the article: "/* Set up. */ . . .") -------------------------
     def config(self, accumulate: bool = False) -> None:
@@ -194,6 +205,28 @@ class Shadows:
                 lmdef(DEFMATERIAL, index, obj.material.props(part))
             self.matl.append(idx)
 
+    def define_textures(self) -> None:
+        """texdef2d each object's TEXTURE image, one TV_MODULATE environment and the
+        README's texgen mapping onto the x-z plane (tex_sparams, tex_tparams).
+        Modulating every pass's colour by the texture textures their sum too."""
+        from vgxsim.formats.sgi import read_rgb
+
+        self.texture = []
+        for k, obj in enumerate(self.scene.objects):
+            if obj.texture is None:
+                self.texture.append(0)
+                continue
+            image = read_rgb(obj.texture)[::-1]  # texdef2d's row 0 is the bottom row
+            h, w, nc = image.shape
+            texdef2d(k + 1, nc, w, h, image, len(TEXTURE_PROPS), TEXTURE_PROPS)
+            self.texture.append(k + 1)
+        if any(self.texture):
+            tevdef(1, 2, (TV_MODULATE, TV_NULL))
+            texgen(TX_S, TG_LINEAR, tex_sparams)
+            texgen(TX_T, TG_LINEAR, tex_tparams)
+            texgen(TX_S, TG_ON, None)
+            texgen(TX_T, TG_ON, None)
+
     def viewing(self) -> None:
         """README: WINDOW gives near and far (and the frustum height at near), LOOKAT
         the look-from and look-to points.  The lights are bound later under this
@@ -216,6 +249,7 @@ class Shadows:
         """Everything before the first frame, on the current window."""
         self.config(accumulate)
         self.define_lighting()
+        self.define_textures()
         self.viewing()
 
     def teardown(self) -> None:
@@ -265,10 +299,16 @@ class Shadows:
         ``DrawObjects (matl_emitambient)``)."""
         for k, obj in enumerate(self.scene.objects):
             lmbind(MATERIAL, self.matl[k][matl])
+            tex = self.texture[k] if k < len(self.texture) else 0
+            if tex:
+                texbind(TX_TEXTURE_0, tex)
+                tevbind(TV_ENV0, 1)
             if self.display_objects:
                 callobj(self._object(obj))
             else:
                 self.draw_polygons(obj)
+            if tex:
+                texbind(TX_TEXTURE_0, 0)
         lmbind(MATERIAL, 0)
 
     def volume_faces(self, i: int) -> tuple[np.ndarray, np.ndarray]:

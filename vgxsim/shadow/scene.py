@@ -252,7 +252,8 @@ class Polyhedron:
         A normal per vertex (``.glo`` files may carry them); None: one per polygon.
     texture : str, optional
         The scene's TEXTURE file for this object.  Read and validated by the scene
-        reader; texture application in the raster is pending (issue 8, item 7).
+        reader; the shadows program maps it onto the x-z plane with texgen
+        (vgxsim.shadow.program.tex_sparams, tex_tparams).
     """
 
     name: str

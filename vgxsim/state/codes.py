@@ -60,7 +60,10 @@ S_BLEND_SF, S_BLEND_DF, S_LOGICOP, S_WMPACK, S_AFUNC, S_AREF = 11, 12, 13, 14, 1
 S_SHADEMODEL, S_SUBPIXEL, S_CULL, S_DRAW_FRONT, S_DRAW_BACK = 17, 18, 19, 20, 21
 S_LINEWIDTH, S_LINESTYLE, S_LSREPEAT, S_PNTSIZE = 22, 23, 24, 25
 S_SX0, S_SX1, S_SY0, S_SY1 = 26, 27, 28, 29
-ROW_SIZE = 30
+# The bound texture (vgxsim.state.textures binding id; 0: texturing off).  In a
+# batch's state table it is rewritten to 1 + the row of the batch's texture table.
+S_TEXTURE = 30
+ROW_SIZE = 31
 Z24_MASK = 0xFFFFFF  # the 24 z bitplanes a zwritemask covers (zwritemask(3G))
 
 # ------------------------------------------- the derived record (per state, per flush)
@@ -91,6 +94,18 @@ MODE_COLOUR = 4
 # MODE_COLOUR blend kinds: replace (ONE, ZERO), add (ONE, ONE), alpha blend (SA, MSA),
 # any other factors.
 CBLEND_REPLACE, CBLEND_ADD, CBLEND_SA_MSA, CBLEND_GENERAL = 0, 1, 2, 3
+
+# ------------------------------------------------------------- texture table
+
+# Columns of a batch's texture table (int64, one row per texture binding used):
+# texel offset into the flat texel array, width, height, components, filters
+# (TEXF_*), wraps (TEXW_*), environment (TEV_*).  docs/numeric_model.md s. 13.
+(X_OFFSET, X_WIDTH, X_HEIGHT, X_NC, X_MINFILTER, X_MAGFILTER, X_WRAP_S, X_WRAP_T,
+ X_ENV) = range(9)
+X_SIZE = 9
+TEXF_POINT, TEXF_BILINEAR = 0, 1
+TEXW_REPEAT, TEXW_CLAMP = 0, 1
+TEV_MODULATE, TEV_DECAL, TEV_BLEND = 0, 1, 2
 
 # ------------------------------------------------------------- work counters
 

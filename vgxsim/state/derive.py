@@ -87,6 +87,8 @@ def _derive_one(row: tuple, planes: int, has_colour: bool, has_z: bool):
         d[C.D_MODE] = C.MODE_COLOUR
         sf, df = st[C.S_BLEND_SF], st[C.S_BLEND_DF]
         d[C.D_CBLEND] = _CBLEND.get((sf, df), C.CBLEND_GENERAL)
+    if st[C.S_TEXTURE] != 0 and colour:
+        d[C.D_MODE] = C.MODE_GENERAL  # the texture stage runs in the general path only
     tab = np.empty((3, 256), np.uint8)
     if not sten:
         tab[0] = _S

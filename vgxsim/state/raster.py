@@ -95,6 +95,7 @@ class RasterState:
     linestyle: int = 0xFFFF
     lsrepeat: int = 1
     pntsize: int = 1
+    texture: int = 0  # binding id (vgxsim.state.textures); 0: off
     extra: tuple = field(default=())  # reserved for later stages (texture, fog)
 
     def as_row(self) -> np.ndarray:

@@ -53,6 +53,7 @@ class RasterRegisters:
         self.linestyle = 0xFFFF
         self.lsrepeat = 1
         self.pntsize = 1
+        self.texture = 0  # texture binding id (vgxsim.state.textures); 0: off
         self._snapshot: RasterState | None = None
         # Snapshots by register values: a program that alternates between a few
         # states (the 1991 shadow faces: stencil INCR, DECR, INCR, ...) gets the
@@ -80,7 +81,7 @@ class RasterRegisters:
                 self.blend, self.logicop, self.wmpack, self.afunction, self.shademodel,
                 self.subpixel, self.backface, self.frontface, self.frontbuffer,
                 self.backbuffer, self.viewport, self.scrmask, self.linewidth,
-                self.linestyle, self.lsrepeat, self.pntsize)
+                self.linestyle, self.lsrepeat, self.pntsize, self.texture)
 
     def snapshot(self) -> RasterState:
         """The current RasterState (cached until a register changes; one object per
@@ -106,7 +107,7 @@ class RasterRegisters:
                 aref=self.afunction[0], shademodel=self.shademodel, subpixel=self.subpixel,
                 cull=cull, draw_front=front, draw_back=back, scissor=self.raster_rect(),
                 linewidth=self.linewidth, linestyle=self.linestyle, lsrepeat=self.lsrepeat,
-                pntsize=self.pntsize,
+                pntsize=self.pntsize, texture=self.texture,
             )
             if len(self._memo) > 4096:
                 self._memo.clear()
@@ -116,4 +117,4 @@ class RasterRegisters:
     def clear_state(self) -> RasterState:
         """Snapshot for clears: only the rectangle, masks and draw buffers matter."""
         return replace(self.snapshot(), zbuffer=False, stencil=False, blend_sf=1,
-                       blend_df=0, logicop=3, afunc=7, cull=0)
+                       blend_df=0, logicop=3, afunc=7, cull=0, texture=0)

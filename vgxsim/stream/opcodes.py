@@ -26,12 +26,16 @@ BGN        primitive kind               --
 END        --                           --
 SWAP       --                           -- (swaptmesh)
 STATE      state-record index           -- (the interned draw state for what follows)
+T          --                           s, t: t2*, the current texture coordinate
 =========  ===========================  ===============================================
 """
 
 from __future__ import annotations
 
 V, SYNC, C, CM, CSKIP, CRAW, N, BGN, END, SWAP, STATE = range(11)
+#: t2*: s, t in the float payload; the vertices after it take that texture coordinate
+#: (decoded by vgxsim.kernels.texture.decode_texcoords, only for streams that hold one).
+T = 11
 
 #: Primitive kinds carried by BGN.  PMV is the old-style pmv/pdr/pclos polygon.
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT, PMV = range(7)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .opcodes import BGN, CM, CRAW, CSKIP, END, SWAP, C, N, V
+from .opcodes import BGN, CM, CRAW, CSKIP, END, SWAP, C, N, T, V
 
 #: Attribute vector the decoder starts from (see kernels/decode.py).
 ATTRS = 11
@@ -51,6 +51,10 @@ class CommandStream:
         self.attrs[10] = -1.0
         self.open_ops = -1
         self.open_fl = -1
+        # t2*: the texture coordinate current at the start of ``ops``, and whether the
+        # stream ever held a T op (only then is a texture coordinate decoded per vertex).
+        self.tex_attrs = np.zeros(2)
+        self.has_texcoords = False
         self.forget()
 
     def forget(self) -> None:
@@ -69,6 +73,8 @@ def _payload(op: int) -> tuple[int, int]:
         return 0, 4
     if op == N:
         return 0, 3
+    if op == T:
+        return 0, 2
     if op == BGN:
         return 1, 0
     return 0, 0

@@ -1,0 +1,233 @@
+"""The texture stage: texture-coordinate planes and the per-fragment texture look-up.
+
+docs/numeric_model.md section 13.  Per vertex the geometry stage hands over s/w,
+t/w and 1/w (w the clip-space w); they are interpolated linearly in the window like
+colour (section 4: the same canonical vertex order and plane origin), and each
+fragment divides by the interpolated 1/w, so texture coordinates are
+perspective-correct.  The look-up addresses texels with centres at half-integers,
+wraps (repeat or clamp to the edge texel), filters (point or bilinear; minification
+or magnification decided per fragment from the coordinates' screen derivatives)
+and applies the environment (modulate, decal, blend) to the fragment colour.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vgxsim.state.codes import (
+    TEV_BLEND,
+    TEV_DECAL,
+    TEXF_BILINEAR,
+    TEXW_CLAMP,
+    X_ENV,
+    X_HEIGHT,
+    X_MAGFILTER,
+    X_MINFILTER,
+    X_OFFSET,
+    X_WIDTH,
+    X_WRAP_S,
+    X_WRAP_T,
+)
+from vgxsim.stream.opcodes import CM, CRAW, CSKIP, SYNC, C, N, T, V
+
+from .clip import ONE
+from .decode import _int_payload
+from .options import inline, jit
+
+
+@jit
+def setup_texture_planes(xf, yf, stq, tris, t_tex, offset):
+    """Planes of s/w, t/w, 1/w of triangles set up at slots ``offset ..``.
+
+    Parameters
+    ----------
+    xf, yf : ndarray, shape (Nv,), int64
+        Fixed-point window coordinates (as given to setup_triangles).
+    stq : ndarray, shape (Nv, 3), float64
+        s/w, t/w, 1/w per vertex.
+    tris : ndarray, shape (Nt, 3), int64
+    t_tex : ndarray, shape (C, 3, 3), float64
+        Out: per slot and quantity, (value at the plane origin, d/dx, d/dy); the
+        origin is the canonical first vertex, as for depth and colour.
+    offset : int
+    """
+    for t in range(tris.shape[0]):
+        n = offset + t
+        a, b, c = tris[t, 0], tris[t, 1], tris[t, 2]
+        if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
+            a, b = b, a
+        if (yf[c] < yf[b]) or (yf[c] == yf[b] and xf[c] < xf[b]):
+            b, c = c, b
+            if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
+                a, b = b, a
+        ax, ay, bx, by, cx, cy = xf[a], yf[a], xf[b], yf[b], xf[c], yf[c]
+        det2 = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
+        if det2 == 0:
+            for k in range(3):
+                t_tex[n, k, 0] = 0.0
+                t_tex[n, k, 1] = 0.0
+                t_tex[n, k, 2] = 0.0
+            continue
+        fx0 = ax / ONE
+        fy0 = ay / ONE
+        dxb = bx / ONE - fx0
+        dyb = by / ONE - fy0
+        dxc = cx / ONE - fx0
+        dyc = cy / ONE - fy0
+        det = det2 / (ONE * ONE)
+        for k in range(3):
+            va = stq[a, k]
+            vb = stq[b, k]
+            vc = stq[c, k]
+            t_tex[n, k, 0] = va
+            t_tex[n, k, 1] = ((vb - va) * dyc - (vc - va) * dyb) / det
+            t_tex[n, k, 2] = (dxb * (vc - va) - dxc * (vb - va)) / det
+    return offset + tris.shape[0]
+
+
+@inline
+def _wrap(i, n, mode):
+    if mode == TEXW_CLAMP:
+        return min(max(i, 0), n - 1)
+    return i % n  # floor modulo: repeat
+
+
+@inline
+def _texel(texels, base, w, i, j, ch):
+    return np.float64((np.int64(texels[base + j * w + i]) >> (8 * ch)) & 0xFF)
+
+
+@inline
+def _filtered(texels, base, w, i0, i1, j0, j1, al, be, ch):
+    """Bilinear sum of one component, in the order docs/numeric_model.md s. 13 writes."""
+    return ((((1.0 - al) * (1.0 - be)) * _texel(texels, base, w, i0, j0, ch)
+             + (al * (1.0 - be)) * _texel(texels, base, w, i1, j0, ch))
+            + ((1.0 - al) * be) * _texel(texels, base, w, i0, j1, ch)) \
+        + (al * be) * _texel(texels, base, w, i1, j1, ch)
+
+
+@jit
+def texture_fragment(t_tex, t, x, y, x0, y0, info, env_colour, texels, slot, r, g, b, a):
+    """Textured colour of one fragment.
+
+    ``t_tex[t]`` are the triangle's planes, (x0, y0) their origin; ``slot`` the row
+    of the texture table (``info``, ``env_colour``, ``texels``: see
+    vgxsim.state.textures.pack_bindings); r, g, b, a the fragment's rounded colour
+    (ints 0..255).  Returns the four components as floats (rounded by pack_rgba).
+    """
+    dy = y - y0
+    dx = x - x0
+    sw = (t_tex[t, 0, 0] + t_tex[t, 0, 2] * dy) + t_tex[t, 0, 1] * dx
+    tw = (t_tex[t, 1, 0] + t_tex[t, 1, 2] * dy) + t_tex[t, 1, 1] * dx
+    q = (t_tex[t, 2, 0] + t_tex[t, 2, 2] * dy) + t_tex[t, 2, 1] * dx
+    if q == 0.0:
+        q = 1e-300
+    s = sw / q
+    tt = tw / q
+    w = info[slot, X_WIDTH]
+    h = info[slot, X_HEIGHT]
+    fil = info[slot, X_MAGFILTER]
+    if info[slot, X_MINFILTER] != fil:
+        dudx = w * (t_tex[t, 0, 1] - s * t_tex[t, 2, 1]) / q
+        dvdx = h * (t_tex[t, 1, 1] - tt * t_tex[t, 2, 1]) / q
+        dudy = w * (t_tex[t, 0, 2] - s * t_tex[t, 2, 2]) / q
+        dvdy = h * (t_tex[t, 1, 2] - tt * t_tex[t, 2, 2]) / q
+        rho2 = max(dudx * dudx + dvdx * dvdx, dudy * dudy + dvdy * dvdy)
+        if rho2 > 1.0:
+            fil = info[slot, X_MINFILTER]
+    # Far outside the texture (or a degenerate 1/w): keep the texel index an int64.
+    u = min(max(s * w, -1e15), 1e15)
+    v = min(max(tt * h, -1e15), 1e15)
+    base = info[slot, X_OFFSET]
+    ws = info[slot, X_WRAP_S]
+    wt = info[slot, X_WRAP_T]
+    if fil == TEXF_BILINEAR:
+        u = u - 0.5
+        v = v - 0.5
+        fu = np.floor(u)
+        fv = np.floor(v)
+        al = u - fu
+        be = v - fv
+        i0 = _wrap(np.int64(fu), w, ws)
+        i1 = _wrap(np.int64(fu) + 1, w, ws)
+        j0 = _wrap(np.int64(fv), h, wt)
+        j1 = _wrap(np.int64(fv) + 1, h, wt)
+    else:
+        # Point sampling is the bilinear sum with zero weights off the texel: the
+        # same expression, exactly the texel (0 * T adds exact zeros).
+        al = 0.0
+        be = 0.0
+        i0 = i1 = _wrap(np.int64(np.floor(u)), w, ws)
+        j0 = j1 = _wrap(np.int64(np.floor(v)), h, wt)
+    t0 = _filtered(texels, base, w, i0, i1, j0, j1, al, be, 0)
+    t1 = _filtered(texels, base, w, i0, i1, j0, j1, al, be, 1)
+    t2 = _filtered(texels, base, w, i0, i1, j0, j1, al, be, 2)
+    t3 = _filtered(texels, base, w, i0, i1, j0, j1, al, be, 3)
+    fr, fg, fb, fa = np.float64(r), np.float64(g), np.float64(b), np.float64(a)
+    mode = info[slot, X_ENV]
+    if mode == TEV_DECAL:
+        ta = t3
+        return ((fr * (255.0 - ta) + t0 * ta) / 255.0,
+                (fg * (255.0 - ta) + t1 * ta) / 255.0,
+                (fb * (255.0 - ta) + t2 * ta) / 255.0, fa)
+    if mode == TEV_BLEND:
+        return ((fr * (255.0 - t0) + env_colour[slot, 0] * t0) / 255.0,
+                (fg * (255.0 - t1) + env_colour[slot, 1] * t1) / 255.0,
+                (fb * (255.0 - t2) + env_colour[slot, 2] * t2) / 255.0,
+                (fa * t3) / 255.0)
+    return ((fr * t0) / 255.0, (fg * t1) / 255.0, (fb * t2) / 255.0,
+            (fa * t3) / 255.0)
+
+
+@jit
+def decode_texcoords(ops, nops, fl, st0):
+    """The texture coordinate (t2*) of every vertex of a command stream.
+
+    Walks the stream as :func:`vgxsim.kernels.decode.decode_stream` does (same
+    payload sizes), for streams that hold T ops only.
+
+    Parameters
+    ----------
+    ops, nops, fl
+        As for decode_stream.
+    st0 : ndarray, shape (2,), float64
+        In: s, t current at the start of the stream; out: at its end.
+
+    Returns
+    -------
+    ndarray, shape (V, 2), float64
+    """
+    nv = 0
+    i = 0
+    while i < nops:
+        op = ops[i]
+        if op == V:
+            nv += 1
+        i += 1 + _int_payload(op)
+    out = np.empty((nv, 2))
+    s = st0[0]
+    t = st0[1]
+    iv = 0
+    f = 0
+    i = 0
+    while i < nops:
+        op = ops[i]
+        if op == V:
+            out[iv, 0] = s
+            out[iv, 1] = t
+            iv += 1
+            f += 4
+        elif op == T:
+            s = fl[f]
+            t = fl[f + 1]
+            f += 2
+        elif op == SYNC:
+            f += 7
+        elif op == C or op == CM or op == CSKIP or op == CRAW:
+            f += 4
+        elif op == N:
+            f += 3
+        i += 1 + _int_payload(op)
+    st0[0] = s
+    st0[1] = t
+    return out

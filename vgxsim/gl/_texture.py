@@ -1,0 +1,284 @@
+"""IRIS GL texture calls: texdef2d, tevdef, texbind, tevbind, texgen.
+
+Texture mapping is on while a non-zero texture and a non-zero environment are bound
+(texbind(3G), tevbind(3G)); the binding becomes one id in the raster registers
+(``RasterState.texture``), so textured and untextured drawing are different state
+records and untextured drawing is untouched.  What is modelled, and how texels are
+addressed and filtered, is docs/numeric_model.md section 13:
+
+* texdef2d: 1..4 components, TX_MINFILTER / TX_MAGFILTER TX_POINT or TX_BILINEAR,
+  TX_WRAP / TX_WRAP_S / TX_WRAP_T TX_REPEAT or TX_CLAMP.  The MIPMAP filters, TX_TILE,
+  TX_BORDER and TX_SELECT are refused with a GLValueError (not modelled);
+* tevdef: TV_MODULATE (the default), TV_DECAL, TV_BLEND with TV_COLOR;
+* texgen: TX_S / TX_T with TG_LINEAR (an object-space plane), TG_ON, TG_OFF.
+  TG_CONTOUR and TG_SPHEREMAP are refused (not modelled).
+
+The image: a numpy array of shape (height, width, nc) with components 0..255 in
+the order I / I A / R G B / R G B A, row 0 the bottom row (the Python form of this
+emulator; the C call takes packed longs), or a flat sequence of 32-bit words in the
+C layout (rows padded to whole words; a word holds its bytes most significant
+first, components in memory order I / A I / B G R / A B G R, as texdef2d(3G) packs
+them on the big-endian IRIS).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from vgxsim import GL
+from vgxsim.state import codes as C
+from vgxsim.state.textures import TexEnv, TexGen, Texture, binding_id
+
+from ._core import GLTypeError, GLValueError, as_float, as_int, current, describe, gl_function
+
+__all__ = ["texdef2d", "tevdef", "texbind", "tevbind", "texgen"]
+
+_FILTERS = {int(GL.TX_POINT): C.TEXF_POINT, int(GL.TX_BILINEAR): C.TEXF_BILINEAR}
+_MIPMAPS = {int(GL.TX_MIPMAP), int(GL.TX_MIPMAP_POINT), int(GL.TX_MIPMAP_LINEAR),
+            int(GL.TX_MIPMAP_BILINEAR), int(GL.TX_MIPMAP_TRILINEAR)}
+_WRAPS = {int(GL.TX_REPEAT): C.TEXW_REPEAT, int(GL.TX_CLAMP): C.TEXW_CLAMP}
+_ENVS = {int(GL.TV_MODULATE): C.TEV_MODULATE, int(GL.TV_DECAL): C.TEV_DECAL,
+         int(GL.TV_BLEND): C.TEV_BLEND}
+
+
+class TextureUnit:
+    """A window's texture definitions, bindings and texgen state."""
+
+    def __init__(self):
+        self.textures: dict[int, Texture] = {}
+        self.envs: dict[int, TexEnv] = {}
+        self.bound_texture = 0
+        self.bound_env = 0
+        # Per coordinate (TX_S, TX_T): the defined TG_LINEAR plane and whether on.
+        self.planes: list = [None, None]
+        self.gen_on = [False, False]
+
+
+def _unit(ctx) -> TextureUnit:
+    unit = getattr(ctx, "texture_unit", None)
+    if unit is None:
+        unit = ctx.texture_unit = TextureUnit()
+    return unit
+
+
+def _rebind(ctx) -> None:
+    """Put the current binding's id into the raster registers (0: off)."""
+    u = _unit(ctx)
+    tex = u.textures.get(u.bound_texture)
+    env = u.envs.get(u.bound_env)
+    ident = 0
+    if tex is not None and env is not None:
+        gen = TexGen(u.planes[0] if u.gen_on[0] else None,
+                     u.planes[1] if u.gen_on[1] else None)
+        ident = binding_id(tex, env, gen)
+    ctx.raster.set(texture=ident)
+
+
+def _props(name: str, args: tuple, props) -> list[float]:
+    if props is None:
+        return []
+    if isinstance(props, (str, bytes)) or not isinstance(props, (Sequence, np.ndarray)):
+        raise GLTypeError(f"{describe(name, args)}: props must be a flat sequence of "
+                          f"numbers, not {type(props).__name__}")
+    return [as_float(name, args, "props", v) for v in np.asarray(props).reshape(-1).tolist()]
+
+
+def _index(name: str, args: tuple, v) -> int:
+    idx = as_int(name, args, "index", v)
+    if not 0 <= idx <= 0x7FFF:
+        raise GLValueError(f"{describe(name, args)}: index {idx} is outside 0..32767")
+    return idx
+
+
+def _image(name: str, args: tuple, nc: int, w: int, h: int, image) -> np.ndarray:
+    """The image as (h, w, nc) uint8, row 0 the bottom row."""
+    if isinstance(image, np.ndarray) and image.ndim == 3:
+        if image.shape != (h, w, nc):
+            raise GLValueError(f"{describe(name, args)}: image has shape {image.shape}, "
+                               f"expected (height, width, nc) = ({h}, {w}, {nc})")
+        arr = np.asarray(image)
+        if arr.dtype.kind not in "ui" or arr.min() < 0 or arr.max() > 255:
+            raise GLValueError(f"{describe(name, args)}: image components must be "
+                               f"integers 0..255")
+        return arr.astype(np.uint8)
+    if isinstance(image, (str, bytes)) or not isinstance(image, (Sequence, np.ndarray)):
+        raise GLTypeError(f"{describe(name, args)}: image must be an (height, width, nc) "
+                          f"array or a sequence of packed 32-bit words")
+    words = np.asarray(image).reshape(-1)
+    per_row = (w * nc + 3) // 4
+    if words.shape[0] != per_row * h:
+        raise GLValueError(f"{describe(name, args)}: image has {words.shape[0]} words, "
+                           f"expected {per_row * h} ({h} rows of {per_row})")
+    if words.dtype.kind not in "ui":
+        raise GLTypeError(f"{describe(name, args)}: image words must be integers")
+    raw = (words.astype(np.int64) & 0xFFFFFFFF).astype(">u4").view(np.uint8)
+    raw = raw.reshape(h, per_row * 4)[:, :w * nc].reshape(h, w, nc)
+    return np.ascontiguousarray(raw[:, :, ::-1])  # memory order A B G R -> R G B A
+
+
+def _expand(img: np.ndarray) -> np.ndarray:
+    """(h, w, nc) -> (h, w, 4) RGBA (see vgxsim.state.textures.Texture)."""
+    h, w, nc = img.shape
+    out = np.full((h, w, 4), 255, np.uint8)
+    if nc <= 2:
+        out[..., :3] = img[..., :1]
+        if nc == 2:
+            out[..., 3] = img[..., 1]
+    else:
+        out[..., :nc] = img
+    return out
+
+
+@gl_function()
+def texdef2d(index: int, nc: int, width: int, height: int, image, np_: int,
+             props) -> None:
+    """Define texture ``index`` (texdef2d(3G)): ``nc`` components (1..4), a
+    ``width`` x ``height`` image and a property list ending in TX_NULL."""
+    args = (index, nc, width, height, image, np_, props)
+    name = "texdef2d"
+    idx = _index(name, args, index)
+    if idx == 0:
+        raise GLValueError(f"{describe(name, args)}: index 0 is reserved (texbind(.., 0) "
+                           f"turns texturing off)")
+    ncv = as_int(name, args, "nc", nc)
+    if not 1 <= ncv <= 4:
+        raise GLValueError(f"{describe(name, args)}: nc {ncv} is outside 1..4")
+    w = as_int(name, args, "width", width)
+    h = as_int(name, args, "height", height)
+    if w < 1 or h < 1:
+        raise GLValueError(f"{describe(name, args)}: width and height must be >= 1")
+    img = _image(name, args, ncv, w, h, image)
+    p = _props(name, args, props)
+    fil = {C.X_MINFILTER: C.TEXF_POINT, C.X_MAGFILTER: C.TEXF_POINT}
+    wrap = [C.TEXW_REPEAT, C.TEXW_REPEAT]
+    i = 0
+    while i < len(p) and int(p[i]) != int(GL.TX_NULL):
+        tok = int(p[i])
+        if i + 1 >= len(p):
+            raise GLValueError(f"{describe(name, args)}: property {tok:#x} has no value")
+        val = int(p[i + 1])
+        if tok in (int(GL.TX_MINFILTER), int(GL.TX_MAGFILTER)):
+            if val in _MIPMAPS:
+                raise GLValueError(f"{describe(name, args)}: MIPMAP filter {val:#x} is not "
+                                   f"modelled (TX_POINT, TX_BILINEAR are)")
+            if val not in _FILTERS:
+                raise GLValueError(f"{describe(name, args)}: filter {val:#x} is not a "
+                                   f"valid TX_* filter")
+            fil[C.X_MINFILTER if tok == int(GL.TX_MINFILTER) else C.X_MAGFILTER] = \
+                _FILTERS[val]
+        elif tok in (int(GL.TX_WRAP), int(GL.TX_WRAP_S), int(GL.TX_WRAP_T)):
+            if val not in _WRAPS:
+                raise GLValueError(f"{describe(name, args)}: wrap {val:#x} is not modelled "
+                                   f"(TX_REPEAT, TX_CLAMP are)")
+            if tok != int(GL.TX_WRAP_T):
+                wrap[0] = _WRAPS[val]
+            if tok != int(GL.TX_WRAP_S):
+                wrap[1] = _WRAPS[val]
+        else:
+            raise GLValueError(f"{describe(name, args)}: property {tok:#x} is not modelled "
+                               f"(TX_MINFILTER, TX_MAGFILTER, TX_WRAP[_S|_T] are)")
+        i += 2
+    ctx = current(name, args)
+    u = _unit(ctx)
+    u.textures[idx] = Texture(_expand(img), ncv, fil[C.X_MINFILTER], fil[C.X_MAGFILTER],
+                              wrap[0], wrap[1])
+    _rebind(ctx)
+
+
+@gl_function()
+def tevdef(index: int, np_: int, props) -> None:
+    """Define texture environment ``index`` (tevdef(3G)): TV_MODULATE (default),
+    TV_DECAL or TV_BLEND, and TV_COLOR r g b a (the TV_BLEND colour)."""
+    args = (index, np_, props)
+    name = "tevdef"
+    idx = _index(name, args, index)
+    if idx == 0:
+        raise GLValueError(f"{describe(name, args)}: index 0 is reserved")
+    p = _props(name, args, props)
+    mode = C.TEV_MODULATE
+    colour = (0.0, 0.0, 0.0, 0.0)
+    i = 0
+    while i < len(p) and int(p[i]) != int(GL.TV_NULL):
+        tok = int(p[i])
+        if tok in _ENVS:
+            mode = _ENVS[tok]
+            i += 1
+        elif tok == int(GL.TV_COLOR):
+            if i + 4 >= len(p):
+                raise GLValueError(f"{describe(name, args)}: TV_COLOR needs 4 values")
+            colour = tuple(min(max(v, 0.0), 1.0) for v in p[i + 1:i + 5])
+            i += 5
+        else:
+            raise GLValueError(f"{describe(name, args)}: property {tok:#x} is not modelled "
+                               f"(TV_MODULATE, TV_DECAL, TV_BLEND, TV_COLOR are)")
+    ctx = current(name, args)
+    _unit(ctx).envs[idx] = TexEnv(mode, colour)
+    _rebind(ctx)
+
+
+@gl_function()
+def texbind(target: int, index: int) -> None:
+    """Bind texture ``index`` to TX_TEXTURE_0 (texbind(3G)); 0 turns texturing off."""
+    args = (target, index)
+    if as_int("texbind", args, "target", target) != int(GL.TX_TEXTURE_0):
+        raise GLValueError(f"{describe('texbind', args)}: target must be TX_TEXTURE_0")
+    idx = _index("texbind", args, index)
+    ctx = current("texbind", args)
+    u = _unit(ctx)
+    if idx and idx not in u.textures:
+        raise GLValueError(f"{describe('texbind', args)}: texture {idx} is not defined "
+                           f"(define it with texdef2d)")
+    u.bound_texture = idx
+    _rebind(ctx)
+
+
+@gl_function()
+def tevbind(target: int, index: int) -> None:
+    """Bind environment ``index`` to TV_ENV0 (tevbind(3G)); 0 turns texturing off."""
+    args = (target, index)
+    if as_int("tevbind", args, "target", target) != int(GL.TV_ENV0):
+        raise GLValueError(f"{describe('tevbind', args)}: target must be TV_ENV0")
+    idx = _index("tevbind", args, index)
+    ctx = current("tevbind", args)
+    u = _unit(ctx)
+    if idx and idx not in u.envs:
+        raise GLValueError(f"{describe('tevbind', args)}: environment {idx} is not "
+                           f"defined (define it with tevdef)")
+    u.bound_env = idx
+    _rebind(ctx)
+
+
+@gl_function()
+def texgen(coord: int, mode: int, params) -> None:
+    """Texture-coordinate generation (texgen(3G)) for TX_S or TX_T: TG_LINEAR defines
+    an object-space plane (a, b, c, d: s = a x + b y + c z + d w), TG_ON turns the
+    defined generation on, TG_OFF off (the coordinate comes from t2* again)."""
+    args = (coord, mode, params)
+    c = as_int("texgen", args, "coord", coord)
+    if c not in (int(GL.TX_S), int(GL.TX_T)):
+        raise GLValueError(f"{describe('texgen', args)}: coord must be TX_S or TX_T")
+    m = as_int("texgen", args, "mode", mode)
+    ctx = current("texgen", args)
+    u = _unit(ctx)
+    if m == int(GL.TG_LINEAR):
+        p = _props("texgen", args, params)
+        if len(p) < 4:
+            raise GLValueError(f"{describe('texgen', args)}: TG_LINEAR needs a plane of "
+                               f"4 values")
+        u.planes[c] = tuple(p[:4])
+    elif m == int(GL.TG_ON):
+        if u.planes[c] is None:
+            raise GLValueError(f"{describe('texgen', args)}: TG_ON before a TG_LINEAR "
+                               f"definition for this coordinate")
+        u.gen_on[c] = True
+    elif m == int(GL.TG_OFF):
+        u.gen_on[c] = False
+    elif m in (int(GL.TG_CONTOUR), int(GL.TG_SPHEREMAP)):
+        raise GLValueError(f"{describe('texgen', args)}: mode {m} is not modelled "
+                           f"(TG_LINEAR, TG_ON and TG_OFF are)")
+    else:
+        raise GLValueError(f"{describe('texgen', args)}: mode {m} is not a valid TG_* "
+                           f"token")
+    _rebind(ctx)

@@ -1,0 +1,139 @@
+"""Texture state as data: defined textures, environments, texgen, and bindings.
+
+texdef2d(3G) defines a texture, tevdef(3G) an environment, texgen(3G) how s and t
+come from the vertex; texture mapping is on while a non-zero texture *and* a non-zero
+environment are bound (texbind(3G), tevbind(3G)).  What a draw needs of all this is
+one immutable :class:`Binding`, interned here under a small integer id that the
+RasterState carries (``RasterState.texture``; 0: off), so that texture state splits
+state records like any other register and a batch packs only the bindings it uses
+into arrays for the kernels (:func:`pack_bindings`).
+
+The texture contract (texel centres, perspective-correct coordinates, filters,
+wraps, environments) is docs/numeric_model.md section 13.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import codes as C
+
+
+@dataclass(frozen=True, eq=False)
+class Texture:
+    """One texdef2d definition.
+
+    Attributes
+    ----------
+    texels : ndarray, shape (H, W, 4), uint8
+        RGBA per texel, row 0 the bottom row (t near 0), as texdef2d's image is
+        stored; a 1- or 2-component (intensity, intensity-alpha) image is expanded
+        to I, I, I, 255 or I, I, I, A, a 3-component one gets alpha 255.
+    nc : int
+        Components as defined (1..4): the environments treat them differently.
+    minfilter, magfilter : int
+        TEXF_* (vgxsim.state.codes).
+    wrap_s, wrap_t : int
+        TEXW_*.
+    """
+
+    texels: np.ndarray
+    nc: int
+    minfilter: int = C.TEXF_POINT
+    magfilter: int = C.TEXF_POINT
+    wrap_s: int = C.TEXW_REPEAT
+    wrap_t: int = C.TEXW_REPEAT
+
+
+@dataclass(frozen=True)
+class TexEnv:
+    """One tevdef definition: the environment (TEV_*) and TV_COLOR's constant colour
+    (0..1 floats, used by TV_BLEND)."""
+
+    mode: int = C.TEV_MODULATE
+    colour: tuple = (0.0, 0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class TexGen:
+    """Texture-coordinate generation for s and t (texgen(3G)).
+
+    ``s_plane``/``t_plane`` are object-space planes (TG_LINEAR) when the coordinate's
+    generation is on, else None: that coordinate comes from t2*.
+    """
+
+    s_plane: tuple | None = None
+    t_plane: tuple | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class Binding:
+    """What a draw with texturing on needs: texture, environment, texgen."""
+
+    texture: Texture
+    env: TexEnv
+    texgen: TexGen
+
+
+_BINDINGS: list[Binding | None] = [None]  # id 0: texturing off
+_IDS: dict[tuple, int] = {}
+
+
+def binding_id(texture: Texture, env: TexEnv, texgen: TexGen) -> int:
+    """The id of a binding (the same objects give the same id)."""
+    key = (id(texture), env, texgen)
+    got = _IDS.get(key)
+    if got is not None and _BINDINGS[got].texture is texture:
+        return got
+    _BINDINGS.append(Binding(texture, env, texgen))
+    _IDS[key] = len(_BINDINGS) - 1
+    return _IDS[key]
+
+
+def binding(ident: int) -> Binding:
+    """The binding of a non-zero id."""
+    b = _BINDINGS[ident]
+    if b is None:
+        raise KeyError(ident)
+    return b
+
+
+def pack_rgba(texels: np.ndarray) -> np.ndarray:
+    """(H, W, 4) uint8 -> (H * W,) uint32 packed 0xAABBGGRR (cpack order)."""
+    t = texels.astype(np.uint32)
+    return (t[..., 0] | (t[..., 1] << 8) | (t[..., 2] << 16) | (t[..., 3] << 24)).reshape(-1)
+
+
+def pack_bindings(ids: list[int]):
+    """The kernels' texture table for the bindings ``ids`` (in that order).
+
+    Returns
+    -------
+    info : ndarray, shape (K, X_SIZE), int64
+        One row per binding (X_* columns of vgxsim.state.codes).
+    env_colour : ndarray, shape (K, 4), float64
+        TV_COLOR of each binding's environment, 0..255.
+    texels : ndarray, shape (sum of H * W,), uint32
+        Every texture's texels, packed, row after row from the bottom.
+    """
+    info = np.zeros((max(len(ids), 1), C.X_SIZE), np.int64)
+    env = np.zeros((max(len(ids), 1), 4), np.float64)
+    chunks = []
+    offset = 0
+    for k, ident in enumerate(ids):
+        b = binding(ident)
+        tex = b.texture
+        h, w = tex.texels.shape[:2]
+        info[k] = (offset, w, h, tex.nc, tex.minfilter, tex.magfilter, tex.wrap_s,
+                   tex.wrap_t, b.env.mode)
+        env[k] = [float(c) * 255.0 for c in b.env.colour]
+        chunks.append(pack_rgba(tex.texels))
+        offset += h * w
+    texels = np.concatenate(chunks) if chunks else np.zeros(1, np.uint32)
+    return info, env, np.ascontiguousarray(texels)
+
+
+__all__ = ["Texture", "TexEnv", "TexGen", "Binding", "binding_id", "binding",
+           "pack_bindings", "pack_rgba"]
