@@ -533,7 +533,10 @@ def _advance(ctx, x: int, y: int, n: int) -> None:
 
 
 def _row_values(name: str, args: tuple, vals, n: int, lo: int, hi: int) -> np.ndarray:
-    arr = np.asarray(list(vals) if not isinstance(vals, np.ndarray) else vals)
+    try:
+        arr = np.asarray(list(vals) if not isinstance(vals, np.ndarray) else vals)
+    except (TypeError, ValueError):  # not a sequence, or a ragged one
+        raise GLTypeError(f"{describe(name, args)}: expected {n} integers") from None
     if arr.size != n or arr.dtype.kind not in "iub":
         raise GLTypeError(f"{describe(name, args)}: expected {n} integers")
     arr = arr.reshape(-1).astype(np.int64)

@@ -63,6 +63,10 @@ def inexpressible(rs: RasterState, stencil_planes: int, clear: bool = False) -> 
             and OP_INCR in (rs.sfail, rs.spass, rs.szpass)):
         # IRIS clamps ST_INCR at 2**stensize - 1; GL's 8-bit buffer at 255.
         out.append("ST_INCR with fewer than 8 stencil planes")
+    if not clear and rs.texture:
+        # The texture stage (numeric_model section 14) is not mapped onto GL texture
+        # state yet: textured triangles are drawn by the software batch, exactly.
+        out.append("texturing")
     return out
 
 
@@ -161,7 +165,8 @@ class OpenGLBatch(CommandBatch):
         if self.nprims >= MAX_PRIMITIVES:
             self.flush()
 
-    def add_triangles(self, xf, yf, zw, col, tris, src, flat_col, rs: RasterState) -> int:
+    def add_triangles(self, xf, yf, zw, col, tris, src, flat_col, rs: RasterState,
+                      tex=None) -> int:
         """Queue triangles in fixed-point window coordinates (parameters as
         :meth:`CommandBatch.add_triangles`); culling is GL's (counter-clockwise in
         window coordinates is front-facing, backface(3G)).
@@ -175,12 +180,14 @@ class OpenGLBatch(CommandBatch):
         nt = tris.shape[0]
         if nt == 0:
             return 0
-        if self._cpu_route(rs):
+        if self._cpu_route(rs) or tex is not None:
             self.ntris += nt
             # Copies: the software batch sets up at the flush, and the caller may
-            # reuse its arrays once this call returns.
+            # reuse its arrays once this call returns.  ``tex``: (Nv, 3) s/w, t/w, 1/w
+            # of textured triangles (inexpressible() routes texturing here).
             self._queue((_CPU, rs, "add_triangles", (*_copies(xf, yf, zw, col, tris, src,
-                                                              flat_col), rs)), nt)
+                                                              flat_col), rs,
+                                                     *_copies(tex))), nt)
             return nt
         flat = rs.shademodel == FLAT or col is None
         corners = tris.reshape(-1)
