@@ -28,24 +28,19 @@ for it); it is written as a comment, and a replay keeps the window's size.
 
 from __future__ import annotations
 
-import os
 import time
 
-os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-# SIGINT and SIGTERM stay the runner's (it ends the run cleanly between two calls)
-os.environ.setdefault("SDL_NO_SIGNAL_HANDLERS", "1")
+import numpy as np
 
-import numpy as np  # noqa: E402
-import pygame  # noqa: E402
+from vgxsim import DEVICE
+from vgxsim.gl._core import window_of
 
-from vgxsim import DEVICE  # noqa: E402
-from vgxsim.gl._core import window_of  # noqa: E402
-
-from .devices import MOUSE_BUTTONS, key_device, screen_position  # noqa: E402
-from .live import LiveEventQueue, LiveStep  # noqa: E402
-from .menus import WindowMenuPresenter  # noqa: E402
-from .screen import ScreenSink, ScreenWindow  # noqa: E402
-from .script_writer import EventScriptWriter  # noqa: E402
+from .devices import MOUSE_BUTTONS, key_device, screen_position
+from .live import LiveEventQueue, LiveStep
+from .menus import WindowMenuPresenter
+from .screen import ScreenSink, ScreenWindow
+from .script_writer import EventScriptWriter
+from .sdl import pygame
 
 __all__ = ["WindowBackend"]
 

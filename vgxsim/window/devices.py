@@ -13,7 +13,7 @@ position in the window, y counted from its bottom row.
 
 from __future__ import annotations
 
-import pygame
+from .sdl import pygame
 
 __all__ = ["KEY_DEVICES", "MOUSE_BUTTONS", "key_device", "screen_position"]
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import pygame
+from .sdl import pygame
 
 __all__ = ["WindowMenuPresenter", "MenuPanel"]
 

@@ -14,7 +14,8 @@ from __future__ import annotations
 import time
 
 import numpy as np
-import pygame
+
+from .sdl import pygame
 
 __all__ = ["ScreenWindow", "ScreenSink"]
 
