@@ -160,6 +160,20 @@ class CommandBatch:
         self.c_vals = np.zeros((16, 4), np.int64)
         self.c_state = np.zeros(16, np.int64)
 
+    def _grow_records(self, end: int) -> None:
+        """Grow the set-up record arrays to hold ``end`` records (capacity is kept
+        across flushes)."""
+        self.t_edge = _grow(self.t_edge, end)
+        self.t_box = _grow(self.t_box, end)
+        self.t_z = _grow(self.t_z, end)
+        self.t_zlim = _grow(self.t_zlim, end)
+        self.t_col = _grow(self.t_col, end)
+        self.t_state = _grow(self.t_state, end)
+
+    def _records(self) -> tuple:
+        """The set-up record arrays, in the order the set-up kernels write them."""
+        return (self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state)
+
     def _reset(self) -> None:
         """Empty the batch (counters only; the arrays keep their capacity)."""
         self._state_index: dict[RasterState, int] = {}
@@ -234,14 +248,9 @@ class CommandBatch:
         flatv = flat_col if flat_col is not None else np.zeros((1, 4))
         flat = rs.shademodel == FLAT or col is None
         end = self.ntris + nt
-        self.t_edge = _grow(self.t_edge, end)
-        self.t_box = _grow(self.t_box, end)
-        self.t_z = _grow(self.t_z, end)
-        self.t_zlim = _grow(self.t_zlim, end)
-        self.t_col = _grow(self.t_col, end)
-        self.t_state = _grow(self.t_state, end)
+        self._grow_records(end)
         start = self.ntris
-        out = (self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state)
+        out = self._records()
         nthreads = threads.get_threads()
         if nthreads > 1 and nt >= PARALLEL_SETUP:
             # Every triangle owns its slot (dead records for culled ones), so chunks
@@ -319,12 +328,7 @@ class CommandBatch:
         flatv = flat_col if flat_col is not None else np.zeros((1, 4))
         flat = rs.shademodel == FLAT or col is None
         end = self.ntris + nt
-        self.t_edge = _grow(self.t_edge, end)
-        self.t_box = _grow(self.t_box, end)
-        self.t_z = _grow(self.t_z, end)
-        self.t_zlim = _grow(self.t_zlim, end)
-        self.t_col = _grow(self.t_col, end)
-        self.t_state = _grow(self.t_state, end)
+        self._grow_records(end)
         start = self.ntris
         self.ntris = setup_triangles_states(
             xf, yf, zw, colv, tris, src, flatv, idx, culls, flat, want_colour,
@@ -418,13 +422,8 @@ class CommandBatch:
         colv = attrv if attr is not None else np.zeros((1, 4))
         start = self.ntris
         end = start + used
-        self.t_edge = _grow(self.t_edge, end)
-        self.t_box = _grow(self.t_box, end)
-        self.t_z = _grow(self.t_z, end)
-        self.t_zlim = _grow(self.t_zlim, end)
-        self.t_col = _grow(self.t_col, end)
-        self.t_state = _grow(self.t_state, end)
-        out = (self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state)
+        self._grow_records(end)
+        out = self._records()
         cuts = _cuts(used, nthreads if par else 1)
         if len(cuts) <= 1:
             setup_triangles_states(xf, yf, zw, colv, rec_tris, src, flatv, idx, culls, flat,
