@@ -18,16 +18,14 @@ import time
 import numpy as np
 
 from vgxsim.shadow.api import load_scene, render
+from vgxsim.shadow.error import near_boundary
 from vgxsim.shadow.raycast import raycast
 
 
 def away_from_boundaries(classes: np.ndarray) -> np.ndarray:
-    p = np.pad(classes, 1, mode="edge")
-    ok = np.ones(classes.shape, bool)
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            ok &= p[1 + dy:1 + dy + classes.shape[0], 1 + dx:1 + dx + classes.shape[1]] == classes
-    return ok
+    """True where the 3 x 3 neighbourhood has one class (boundaries dilated by 1 px):
+    the complement of the error metric's boundary band (vgxsim/shadow/error.py)."""
+    return ~near_boundary(classes)
 
 
 def errors(scene, w, h, ref, **kw):
