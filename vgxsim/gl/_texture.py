@@ -218,36 +218,34 @@ def tevdef(index: int, np_: int, props) -> None:
     _rebind(ctx)
 
 
+def _bind(name: str, args: tuple, target, index, token, table: str, what: str,
+          definer: str) -> None:
+    """texbind/tevbind: check the target, bind definition ``index`` of ``table`` (0
+    turns texturing off) and re-derive the raster's texture state."""
+    if as_int(name, args, "target", target) != int(token):
+        raise GLValueError(f"{describe(name, args)}: target must be {token!r}")
+    idx = _index(name, args, index)
+    ctx = current(name, args)
+    u = _unit(ctx)
+    if idx and idx not in getattr(u, table):
+        raise GLValueError(f"{describe(name, args)}: {what} {idx} is not defined "
+                           f"(define it with {definer})")
+    setattr(u, "bound_texture" if table == "textures" else "bound_env", idx)
+    _rebind(ctx)
+
+
 @gl_function()
 def texbind(target: int, index: int) -> None:
     """Bind texture ``index`` to TX_TEXTURE_0 (texbind(3G)); 0 turns texturing off."""
-    args = (target, index)
-    if as_int("texbind", args, "target", target) != int(GL.TX_TEXTURE_0):
-        raise GLValueError(f"{describe('texbind', args)}: target must be TX_TEXTURE_0")
-    idx = _index("texbind", args, index)
-    ctx = current("texbind", args)
-    u = _unit(ctx)
-    if idx and idx not in u.textures:
-        raise GLValueError(f"{describe('texbind', args)}: texture {idx} is not defined "
-                           f"(define it with texdef2d)")
-    u.bound_texture = idx
-    _rebind(ctx)
+    _bind("texbind", (target, index), target, index, GL.TX_TEXTURE_0, "textures", "texture",
+          "texdef2d")
 
 
 @gl_function()
 def tevbind(target: int, index: int) -> None:
     """Bind environment ``index`` to TV_ENV0 (tevbind(3G)); 0 turns texturing off."""
-    args = (target, index)
-    if as_int("tevbind", args, "target", target) != int(GL.TV_ENV0):
-        raise GLValueError(f"{describe('tevbind', args)}: target must be TV_ENV0")
-    idx = _index("tevbind", args, index)
-    ctx = current("tevbind", args)
-    u = _unit(ctx)
-    if idx and idx not in u.envs:
-        raise GLValueError(f"{describe('tevbind', args)}: environment {idx} is not "
-                           f"defined (define it with tevdef)")
-    u.bound_env = idx
-    _rebind(ctx)
+    _bind("tevbind", (target, index), target, index, GL.TV_ENV0, "envs", "environment",
+          "tevdef")
 
 
 @gl_function()
