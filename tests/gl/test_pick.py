@@ -201,9 +201,10 @@ def test_hit_test_functions_by_hand():
 
 
 # -- Mesa's GL_SELECT as an independent peer ----------------------------------------------
-def _mesa_hits(prims, proj):
+def _mesa_hits(prims, proj, planes=()):
     """Names of Mesa's hit records for ``prims`` [(name, kind, (N, 4) clip-space-ready
-    object vertices)] under the row-vector matrix ``proj`` (loaded as IRIS GL bytes)."""
+    object vertices)] under the row-vector matrix ``proj`` (loaded as IRIS GL bytes),
+    with the user clip planes ``planes`` (a, b, c, d) on (identity modelview)."""
     import ctypes
 
     from vgxsim.reference.mesa import MesaPeer, _import_gl
@@ -222,6 +223,9 @@ def _mesa_hits(prims, proj):
         GLm.glLoadMatrixd(np.ascontiguousarray(proj, dtype=np.float64).reshape(-1))
         GLm.glMatrixMode(GLm.GL_MODELVIEW)
         GLm.glLoadIdentity()
+        for i, q in enumerate(planes):
+            GLm.glClipPlane(GLm.GL_CLIP_PLANE0 + i, np.asarray(q, np.float64))
+            GLm.glEnable(GLm.GL_CLIP_PLANE0 + i)
         GLm.glInitNames()
         GLm.glPushName(0)
         mode = {"point": GLm.GL_POINTS, "line": GLm.GL_LINE_STRIP,
@@ -241,6 +245,93 @@ def _mesa_hits(prims, proj):
         names.append(int(buf[i + 2 + n]))
         i += 3 + n
     return sorted(names)
+
+
+def _random_prims(seed: int):
+    rng = np.random.default_rng(seed)
+    prims = []
+    for name in range(1, 61):
+        kind = ("point", "line", "polygon")[name % 3]
+        n = {"point": 1, "line": 3, "polygon": 3}[kind]
+        centre = rng.uniform(-7, 7, size=3)
+        pts = centre + rng.uniform(-2.5, 2.5, size=(n, 3))
+        prims.append((name, kind, np.hstack([pts, np.ones((n, 1))])))
+    return prims
+
+
+def _select_names(prims, proj, planes=()) -> list[int]:
+    """Our hit names for ``prims`` under ``proj`` with ``planes`` on."""
+    gl.mmode(GL.MVIEWING)
+    gl.mmode(GL.MPROJECTION)
+    gl.loadmatrix(list(proj.reshape(-1)))
+    gl.mmode(GL.MVIEWING)
+    for i, q in enumerate(planes):
+        gl.clipplane(i, GL.CP_DEFINE, q)
+        gl.clipplane(i, GL.CP_ON)
+    gl.gselect(1000)
+    for name, kind, verts in prims:
+        gl.loadname(name)
+        opener, closer = {"point": (gl.bgnpoint, gl.endpoint),
+                          "line": (gl.bgnline, gl.endline),
+                          "polygon": (gl.bgnpolygon, gl.endpolygon)}[kind]
+        opener()
+        for v in verts:
+            gl.v4d(*v)
+        closer()
+    hits = gl.endselect()
+    return sorted(hits[i + 1] for i in range(0, len(hits), 2))
+
+
+def test_select_applies_user_clip_planes_by_hand(win):
+    # Volume +-4 (ortho); plane x >= 1 (1, 0, 0, -1).  A square at x in [2, 3] is
+    # inside the plane, one at x in [-3, -2] is clipped away by it, one at [0.5, 1.5]
+    # straddles it (its part x >= 1 is drawn, so it hits), and a point at x = 0.5 is
+    # outside it.
+    proj = np.eye(4)
+    proj[0, 0], proj[1, 1], proj[2, 2] = 0.25, 0.25, -0.25
+
+    def sq(x0, x1):
+        return np.array([[x0, -1, 0, 1], [x1, -1, 0, 1], [x1, 1, 0, 1], [x0, 1, 0, 1]],
+                        float)
+
+    prims = [(1, "polygon", sq(2, 3)), (2, "polygon", sq(-3, -2)),
+             (3, "polygon", sq(0.5, 1.5)), (4, "point", np.array([[0.5, 0, 0, 1.0]])),
+             (5, "line", np.array([[-3, 0, 0, 1.0], [0, 0, 0, 1], [3, 0, 0, 1]]))]
+    assert _select_names(prims, proj) == [1, 2, 3, 4, 5]
+    assert _select_names(prims, proj, [(1.0, 0.0, 0.0, -1.0)]) == [1, 3, 5]
+    # A second plane y >= 2 leaves nothing of these (all lie in -1 <= y <= 1).
+    assert _select_names(prims, proj, [(1.0, 0.0, 0.0, -1.0), (0, 1.0, 0, -2.0)]) == []
+
+
+def test_pick_applies_user_clip_planes(win):
+    # Pick at the window centre; a square around it hits, unless a user plane (in
+    # the window's ortho2 coordinates, x <= 40) clips it away.
+    cursor(50, 50)
+    for planes, expect in (((), [1, 1]), (((-1.0, 0.0, 0.0, 40.0),), [])):
+        for i, q in enumerate(planes):
+            gl.clipplane(i, GL.CP_DEFINE, q)
+            gl.clipplane(i, GL.CP_ON)
+        gl.pick(50)
+        gl.initnames()
+        gl.loadname(1)
+        square(45, 45, 55, 55)
+        assert gl.endpick() == expect
+
+
+@pytest.mark.parametrize("planes", [(), [(1.0, 0.3, 0.0, 0.5)],
+                                    [(1.0, 0.3, 0.0, 0.5), (-0.2, 1.0, 0.4, 1.0)]])
+def test_select_hits_with_clip_planes_match_mesa(win, planes):
+    from vgxsim.reference import mesa
+
+    if not mesa.mesa_available():
+        pytest.skip("OSMesa is not available")
+    proj = np.eye(4)
+    proj[0, 0], proj[1, 1], proj[2, 2] = 0.25, 0.25, -0.25  # volume +-4
+    prims = _random_prims(11)
+    ours = _select_names(prims, proj, planes)
+    theirs = _mesa_hits(prims, proj, planes)
+    assert 3 < len(ours) < 55  # a real mix of hits and misses
+    assert ours == theirs
 
 
 def test_select_hits_match_mesa(win):

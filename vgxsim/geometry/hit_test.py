@@ -12,7 +12,10 @@ clipped primitive on the boundary is still sent on).
 Pure functions over clip-space vertices (``float64``, shape ``(N, 4)``); no state.
 Liang-Barsky parameter clipping for segments, Sutherland-Hodgman for polygons, both
 against the six planes ``w + x >= 0``, ``w - x >= 0``, ... (the plane distances
-are linear in homogeneous coordinates, so w = 0 vertices need no special case).
+are linear in homogeneous coordinates, so w = 0 vertices need no special case), and
+against the user clip planes that are on (clipplane(3G)): picking asks what drawing
+would draw, and a primitive the user planes clip away draws nothing, so it does not
+hit either (OpenGL's selection mode clips against its user planes the same way).
 """
 
 from __future__ import annotations
@@ -29,18 +32,27 @@ PLANES = np.array([
 ])
 
 
-def point_inside(p: np.ndarray) -> bool:
-    """Whether clip-space point ``p`` (4,) lies in the clip volume (boundary included).
+def _planes(user: np.ndarray | None) -> np.ndarray:
+    """The six volume planes, followed by the user clip planes (K, 4) if any."""
+    if user is None or len(user) == 0:
+        return PLANES
+    return np.vstack([PLANES, np.asarray(user, dtype=np.float64).reshape(-1, 4)])
+
+
+def point_inside(p: np.ndarray, user: np.ndarray | None = None) -> bool:
+    """Whether clip-space point ``p`` (4,) lies in the clip volume (boundary included)
+    and on the inside of every user plane of ``user`` ((K, 4) clip-space planes).
 
     A point with w = 0 is inside only if x = y = z = 0 too, which is no point at all;
     it does not hit.
     """
-    d = PLANES @ np.asarray(p, dtype=np.float64)
+    d = _planes(user) @ np.asarray(p, dtype=np.float64)
     return bool(np.all(d >= 0.0)) and p[3] > 0.0
 
 
-def segment_hits(a: np.ndarray, b: np.ndarray) -> bool:
-    """Whether any part of the segment from ``a`` to ``b`` (each (4,)) is inside.
+def segment_hits(a: np.ndarray, b: np.ndarray, user: np.ndarray | None = None) -> bool:
+    """Whether any part of the segment from ``a`` to ``b`` (each (4,)) is inside
+    (the volume and the user planes ``user``, (K, 4), as for :func:`point_inside`).
 
     Liang-Barsky: the segment ``a + t (b - a)``, ``0 <= t <= 1``, is cut to the
     interval where every plane distance is >= 0; it hits when that interval is not
@@ -48,8 +60,9 @@ def segment_hits(a: np.ndarray, b: np.ndarray) -> bool:
     """
     a = np.asarray(a, dtype=np.float64)
     b = np.asarray(b, dtype=np.float64)
-    da = PLANES @ a
-    db = PLANES @ b
+    planes = _planes(user)
+    da = planes @ a
+    db = planes @ b
     t0, t1 = 0.0, 1.0
     for p, q in zip(da, db, strict=True):
         if p < 0.0 and q < 0.0:
@@ -65,15 +78,16 @@ def segment_hits(a: np.ndarray, b: np.ndarray) -> bool:
                 or a[3] + t1 * (b[3] - a[3]) > 0.0)
 
 
-def polygon_hits(poly: np.ndarray) -> bool:
-    """Whether any part of the planar polygon with vertices ``poly`` (N, 4) is inside.
+def polygon_hits(poly: np.ndarray, user: np.ndarray | None = None) -> bool:
+    """Whether any part of the planar polygon with vertices ``poly`` (N, 4) is inside
+    (the volume and the user planes ``user``, (K, 4), as for :func:`point_inside`).
 
     Sutherland-Hodgman against each plane in turn; a non-empty remainder with a
     vertex of w > 0 hits.  Works for concave polygons too (the remainder may contain
     zero-width bridges along a plane, but it is empty only when the intersection is).
     """
     verts = [np.asarray(v, dtype=np.float64) for v in poly]
-    for c in PLANES:
+    for c in _planes(user):
         if not verts:
             return False
         out = []
@@ -90,7 +104,8 @@ def polygon_hits(poly: np.ndarray) -> bool:
 
 
 def primitive_hits(kind: str, clip: np.ndarray, *, segments: Iterable[Sequence[int]] = (),
-                   polygons: Iterable[Sequence[int]] = ()) -> bool:
+                   polygons: Iterable[Sequence[int]] = (),
+                   user: np.ndarray | None = None) -> bool:
     """Whether a primitive hits the clip volume.
 
     Parameters
@@ -104,6 +119,8 @@ def primitive_hits(kind: str, clip: np.ndarray, *, segments: Iterable[Sequence[i
         Vertex index pairs (lines).
     polygons : iterable of sequences of int
         Vertex index lists (a whole polygon, or the triangles of a mesh).
+    user : ndarray, shape (K, 4), float64, optional
+        The user clip planes that are on, in clip space (inside where c . v >= 0).
 
     Returns
     -------
@@ -111,7 +128,7 @@ def primitive_hits(kind: str, clip: np.ndarray, *, segments: Iterable[Sequence[i
     """
     clip = np.asarray(clip, dtype=np.float64)
     if kind == "point":
-        return any(point_inside(p) for p in clip)
+        return any(point_inside(p, user) for p in clip)
     if kind == "line":
-        return any(segment_hits(clip[i], clip[j]) for i, j in segments)
-    return any(polygon_hits(clip[list(idx)]) for idx in polygons)
+        return any(segment_hits(clip[i], clip[j], user) for i, j in segments)
+    return any(polygon_hits(clip[list(idx)], user) for idx in polygons)

@@ -4,7 +4,8 @@ name stack (initnames, pushname, popname, loadname).
 In pick or select mode nothing is drawn (pick(3G)): every primitive is hit-tested
 instead (:mod:`vgxsim.geometry.hit_test`, through the one hook
 ``Context.select_hook`` in ``Context.draw_arrays``; clears are skipped too).  A
-primitive hits when any part of it lies inside the clip volume:
+primitive hits when any part of it lies inside the clip volume and on the inside of
+every user clip plane that is on (clipplane(3G), as drawing clips):
 
 * ``pick(n)``: the clip volume is narrowed to the *picking region*, ``picksize``
   pixels (default 10 x 10, picksize(3G)) centred on the cursor (MOUSEX/MOUSEY minus
@@ -87,16 +88,18 @@ class PickState:
             return
         self.buffer.extend(rec)
 
-    def test(self, kind: str, clip: np.ndarray, swaps, indices) -> None:
-        """Context.select_hook: hit-test one primitive given in clip space."""
+    def test(self, kind: str, clip: np.ndarray, swaps, indices, user=None) -> None:
+        """Context.select_hook: hit-test one primitive given in clip space, against the
+        clip volume and ``user``, the (K, 4) clip-space user planes that are on
+        (clipplane(3G): what the planes clip away is not drawn, so it cannot hit)."""
         if self.hit or clip.shape[0] == 0:
             return  # already hit since the last record: nothing to learn
         n = clip.shape[0]
         if kind == "point":
-            self.hit = primitive_hits("point", clip)
+            self.hit = primitive_hits("point", clip, user=user)
         elif kind in ("line", "closedline"):
             segs = assembly.line_segments(n, kind == "closedline")
-            self.hit = primitive_hits("line", clip, segments=segs.tolist())
+            self.hit = primitive_hits("line", clip, segments=segs.tolist(), user=user)
         else:
             if kind == "polygon":
                 polys = [list(range(n))]
@@ -106,7 +109,7 @@ class PickState:
                 polys = assembly.qstrip_triangles(n).tolist()
             else:  # 'triangles'
                 polys = np.asarray(indices, np.int64).reshape(-1, 3).tolist()
-            self.hit = primitive_hits("surface", clip, polygons=polys)
+            self.hit = primitive_hits("surface", clip, polygons=polys, user=user)
 
 
 def pick_state() -> PickState:

@@ -87,7 +87,7 @@ def _select_prims(ctx, records, pos, prims, swaps) -> None:
             continue
         name = "polygon" if kind in (POLYGON, PMV) else NAME_OF[kind]
         ctx.select_hook(name, apply(pos[v0:v1], records[si].mvp), swaps[s0:s1].tolist(),
-                        None)
+                        None, records[si].user_planes)
 
 
 def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None) -> None:

@@ -297,7 +297,7 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
     if n == 0:
         return
     if ctx.select_hook is not None:  # pick/select mode: hit-test, draw nothing
-        ctx.select_hook(kind, apply(obj, state.mvp), swaps, indices)
+        ctx.select_hook(kind, apply(obj, state.mvp), swaps, indices, state.user_planes)
         return
     rs = state.raster
     cols = None
