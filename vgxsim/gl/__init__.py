@@ -15,6 +15,7 @@ from ._core import GLError, GLTypeError, GLUsageError, GLValueError  # noqa: F40
 from ._curves import *  # noqa: F401,F403
 from ._depthcue import *  # noqa: F401,F403
 from ._draw import *  # noqa: F401,F403
+from ._drawmode import *  # noqa: F401,F403
 from ._events import *  # noqa: F401,F403
 from ._fm import *  # noqa: F401,F403
 from ._fog import *  # noqa: F401,F403

@@ -26,7 +26,7 @@ meaning they can have headless, so such programs run unchanged.
   pushattributes(3G) says of the push).  Saved, per IRIX 6.5 pushattributes(3G):
   backbuffer, frontbuffer, colour (index and RGB), font, linestyle, lsrepeat,
   linewidth, writemask and RGB writemask, shademodel.  Not saved: cmode/RGBmode (a
-  request that only gconfig acts on), drawmode and pattern (not emulated here).
+  request that only gconfig acts on), pattern (not emulated here) and drawmode.
 * Display and keyboard hardware with nothing to show headless: ``swapinterval``
   (every swapbuffers is one frame), ``gsync`` (no vertical retrace to wait for),
   ``ringbell``/``setbell``, ``clkon``/``clkoff`` (keyclick), ``lampon``/``lampoff``

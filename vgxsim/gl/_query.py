@@ -25,6 +25,7 @@ ones newer than vgxsim -- keep running.
 from __future__ import annotations
 
 from vgxsim import GL
+from vgxsim.state.layers import MAX_BITS
 from vgxsim.state.planes import MAX_STENCIL_PLANES, ZMAX, ZMIN
 
 from ._core import as_int, check_token, current, gl_function
@@ -56,12 +57,12 @@ GDESC: dict[str, int] = {
     "GD_BITS_NORM_DBL_MMAP": 8,  # assumed: as single-buffered
     "GD_BITS_NORM_ZBUFFER": 24,  # 24-bit z-buffer [pstech]
     "GD_BITS_OVER_SNG_CMODE": 0,  # VGX had 4 [pstech]; see FEATURE_GDESC (drawmode)
-    "GD_BITS_UNDR_SNG_CMODE": 0,  # see FEATURE_GDESC (drawmode)
-    "GD_BITS_PUP_SNG_CMODE": 0,  # see FEATURE_GDESC (drawmode)
+    "GD_BITS_UNDR_SNG_CMODE": 0,  # own 4 planes here (vgxsim.state.layers); FEATURE_GDESC
+    "GD_BITS_PUP_SNG_CMODE": 0,  # 2 (PUP_CLEAR..PUP_WHITE); see FEATURE_GDESC (drawmode)
     "GD_BITS_NORM_SNG_ALPHA": 8,  # 8-bit alpha double-buffered [pstech]
     "GD_BITS_NORM_DBL_ALPHA": 8,  # [pstech]
     "GD_BITS_CURSOR": 0,  # headless: no cursor is drawn (defcursor is not emulated)
-    "GD_OVERUNDER_SHARED": 0,  # no overlay/underlay planes to share (FEATURE_GDESC)
+    "GD_OVERUNDER_SHARED": 0,  # overlay and underlay have separate planes (state/layers.py)
     "GD_BLEND": 1,  # pixel blending [pstech]
     "GD_CIFRACT": 0,  # assumed: colour indices are not interpolated fractionally here
     "GD_CROSSHAIR_CINDEX": 0,  # no cursor (see GD_BITS_CURSOR)
@@ -132,9 +133,9 @@ FEATURE_GDESC: dict[str, tuple[str, int]] = {
     "GD_FOGVERTEX": ("fogvertex", 1),
     "GD_ZDRAW_GEOM": ("zdraw", 1),
     "GD_ZDRAW_PIXELS": ("zdraw", 1),
-    "GD_BITS_OVER_SNG_CMODE": ("drawmode", 4),
-    "GD_BITS_UNDR_SNG_CMODE": ("drawmode", 4),
-    "GD_BITS_PUP_SNG_CMODE": ("drawmode", 2),
+    "GD_BITS_OVER_SNG_CMODE": ("drawmode", MAX_BITS["overlay"]),
+    "GD_BITS_UNDR_SNG_CMODE": ("drawmode", MAX_BITS["underlay"]),
+    "GD_BITS_PUP_SNG_CMODE": ("drawmode", MAX_BITS["popup"]),
     "GD_NBLINKS": ("blink", 20),
     "GD_NURBS_ORDER": ("nurbssurface", 8),
     "GD_TRIMCURVE_ORDER": ("bgntrim", 8),
@@ -247,12 +248,13 @@ def _drawmode(ctx) -> int:
 def getplanes() -> int:
     """Bitplanes available for drawing in the current mode (getplanes(3G)).
 
-    RGB mode: 24 (8 per component); colour-map mode: 12, or 8 in multimap mode;
-    0 in any draw mode but NORMALDRAW (the other planes are not emulated).
+    RGB mode: 24 (8 per component); colour-map mode: 12, or 8 in multimap mode; in
+    OVERDRAW, UNDERDRAW and PUPDRAW the planes that framebuffer was granted
+    (overlay(3G), underlay(3G); 2 pop-up planes), in CURSORDRAW 0.
     """
     ctx = current("getplanes")
     if _drawmode(ctx) != GL.NORMALDRAW:
-        return 0
+        return ctx.plane_sets[ctx.planes_selected].bits
     if ctx.config.rgb:
         return 24
     if ctx.multimap:

@@ -21,6 +21,7 @@ from vgxsim.geometry.pipeline import Viewing
 from vgxsim.kernels.accum import accumulate
 from vgxsim.kernels.clip import NO_PLANES
 from vgxsim.lighting import LightingError, LightingTables, light_to_eye
+from vgxsim.pipeline import layers
 from vgxsim.pipeline.decode import drain
 from vgxsim.pipeline.draw import commit_triangles
 from vgxsim.pipeline.draw import draw_arrays as pipeline_draw_arrays
@@ -126,8 +127,12 @@ class Context:
 
         Queued drawing is flushed to the old planes first; the new planes start
         cleared (colour 0, z = GD_ZMAX, stencil 0) and registers that gconfig resets
-        (swritemask, the draw buffers) are reset.
+        (swritemask, the draw buffers) are reset.  The overlay and underlay planes are
+        (re)allocated too (vgxsim.pipeline.layers); the draw mode is kept.
         """
+        selected = getattr(self, "planes_selected", layers.NORMAL)
+        if selected != layers.NORMAL:
+            layers.select(self, layers.NORMAL)
         if getattr(self, "_batch", None) is not None:
             self.batch.flush()
         self.config = config
@@ -143,6 +148,9 @@ class Context:
                 "linestyle", "lsrepeat", "pntsize")}
             self.raster.set(**keep)
         self.raster.set(swritemask=(1 << config.stencil) - 1 if config.stencil else 0)
+        layers.configure(self)
+        if selected != layers.NORMAL:
+            layers.select(self, selected)
 
     @property
     def width(self) -> int:
@@ -255,9 +263,10 @@ class Context:
         return unpack_rgba(self.colour_buffer(which))
 
     def swap(self) -> None:
-        """swapbuffers(): flush, exchange buffers and hand the new front to the sink."""
+        """swapbuffers(): flush, exchange the normal framebuffer's buffers (whichever
+        draw mode is in effect) and hand the new front to the sink."""
         self.flush()
-        self.fb.swap()
+        layers.normal_modes(self)["fb"].swap()
         self.emit_frame()
 
     def emit_frame(self) -> None:
@@ -266,11 +275,11 @@ class Context:
         self.frames += 1
 
     def display_rgba(self) -> np.ndarray:
-        """What the monitor shows: the front buffer as RGBA (colour-mapped in cmode)."""
+        """What the monitor shows: the front buffer as RGBA (colour-mapped in cmode),
+        under the pop-up and overlay planes and over the underlay planes where they
+        have been configured (vgxsim.pipeline.layers.display)."""
         self.flush()
-        if self.config.rgb:
-            return unpack_rgba(self.fb.front)
-        return self.colormap_lookup(self.fb.front)
+        return layers.display(self)
 
     def colormap_lookup(self, packed: np.ndarray) -> np.ndarray:
         """(H, W, 4) uint8 RGBA of index words through the current colour map."""

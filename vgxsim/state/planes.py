@@ -34,6 +34,10 @@ class PlaneConfig:
         Accumulation bits per component (0 or 16, acsize).
     rgb : bool
         RGBmode (True) or cmode (False); colour indices live in the same uint32 words.
+    overlay, underlay : int
+        Overlay and underlay bitplanes, overlay(3G) / underlay(3G) (0 to
+        vgxsim.state.layers.MAX_BITS); their planes are not part of this
+        framebuffer but a PlaneSet each (vgxsim.state.layers).
     """
 
     width: int
@@ -43,6 +47,8 @@ class PlaneConfig:
     stencil: int = 0
     acbits: int = 0
     rgb: bool = True
+    overlay: int = 0
+    underlay: int = 0
 
 
 class Framebuffer:

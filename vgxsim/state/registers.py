@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import NamedTuple
 
-from .raster import CULL_BACK, CULL_FRONT, RasterState
+from .raster import BF_ONE, BF_ZERO, CMP_ALWAYS, CULL_BACK, CULL_FRONT, FLAT, RasterState
 
 
 class StencilRegister(NamedTuple):
@@ -54,6 +54,10 @@ class RasterRegisters:
         self.lsrepeat = 1
         self.pntsize = 1
         self.texture = 0  # texture binding id (vgxsim.state.textures); 0: off
+        # drawmode(3G): None while the normal planes are drawn; otherwise the index
+        # planes of the overlay, underlay or pop-up framebuffer selected (their mask),
+        # and snapshots carry what those framebuffers can do (see _layer_state).
+        self.layer_mask: int | None = None
         self._snapshot: RasterState | None = None
         # Snapshots by register values: a program that alternates between a few
         # states (the 1991 shadow faces: stencil INCR, DECR, INCR, ...) gets the
@@ -81,7 +85,7 @@ class RasterRegisters:
                 self.blend, self.logicop, self.wmpack, self.afunction, self.shademodel,
                 self.subpixel, self.backface, self.frontface, self.frontbuffer,
                 self.backbuffer, self.viewport, self.scrmask, self.linewidth,
-                self.linestyle, self.lsrepeat, self.pntsize, self.texture)
+                self.linestyle, self.lsrepeat, self.pntsize, self.texture, self.layer_mask)
 
     def snapshot(self) -> RasterState:
         """The current RasterState (cached until a register changes; one object per
@@ -109,6 +113,8 @@ class RasterRegisters:
                 linewidth=self.linewidth, linestyle=self.linestyle, lsrepeat=self.lsrepeat,
                 pntsize=self.pntsize, texture=self.texture,
             )
+            if self.layer_mask is not None:
+                self._snapshot = _layer_state(self._snapshot, self.layer_mask)
             if len(self._memo) > 4096:
                 self._memo.clear()
             self._memo[key] = self._snapshot
@@ -118,3 +124,20 @@ class RasterRegisters:
         """Snapshot for clears: only the rectangle, masks and draw buffers matter."""
         return replace(self.snapshot(), zbuffer=False, stencil=False, blend_sf=1,
                        blend_df=0, logicop=3, afunc=7, cull=0, texture=0)
+
+
+def _layer_state(rs: RasterState, mask: int) -> RasterState:
+    """A snapshot as the overlay, underlay and pop-up planes take it (drawmode(3G)).
+
+    Those framebuffers are single colour-index buffers (vgxsim.state.layers): the
+    write mask keeps only their planes, FLAT is "the only available shading model"
+    there (overlay(3G), underlay(3G)); z-buffering, stencil, blending, the alpha test
+    and texturing belong to the normal framebuffer (its z and stencil planes, its RGBA
+    colours), so they are off.  logicop stays: it works on indices (XOR rubber bands
+    drawn in the overlay are the classic use).  The fragment kernels see an ordinary
+    state record; NORMALDRAW snapshots never come here.
+    """
+    return replace(rs, zbuffer=False, stencil=False, blend_sf=BF_ONE, blend_df=BF_ZERO,
+                   afunc=CMP_ALWAYS, shademodel=FLAT, texture=0, draw_front=True,
+                   draw_back=False,
+                   wmpack=rs.wmpack & mask)
