@@ -104,7 +104,8 @@ class Context:
         self.user_planes = NO_PLANES
         self.fog_def = None
         self.fog_on = False
-        self.depthcue = None  # depthcue(3G) (gl/_depthcue.py): the DepthCue ramp
+        self.depthcue = None  # depthcue(3G) (gl/_depthcue.py): the RGB DepthCue ramp
+        self.shaderange = None  # lshaderange(3G): the colour-index ramp
         self.depthcue_on = False
         self.vertex_serial = 0
         # Old-style drawing (gl/_oldstyle.py): the current graphics position (object

@@ -16,7 +16,7 @@ import numpy as np
 from vgxsim.kernels.clip import NO_PLANES
 from vgxsim.state.raster import RasterState, needs_colour
 
-from .depthcue import DepthCue
+from .depthcue import DepthCue, depthcue_state
 from .fog import FogState
 
 
@@ -60,7 +60,7 @@ class DrawState(NamedTuple):
     fog : FogState or None
         Vertex fog (fogvertex(3G)) when it is on in RGB mode, else None.
     depthcue : DepthCue or None
-        The depth-cue ramp when depthcue(TRUE) in RGB mode, else None.
+        The depth-cue ramp (RGB or colour index) when depthcue(TRUE), else None.
     resetls : bool
         Whether the line style restarts at each line (resetls(3G)).
     """
@@ -211,7 +211,7 @@ class StateTable:
         rec = DrawState(ctx.raster.snapshot(), ctx.matrices.mvp(), ctx.raster.viewport,
                         ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
                         bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
-                        ctx.depthcue if ctx.depthcue_on and ctx.config.rgb else None,
+                        depthcue_state(ctx),
                         bool(getattr(ctx, "resetls", True)))
         last = self._last
         if last is not None and same_state(last, rec):
