@@ -66,7 +66,7 @@ def line_steps(seg_xf, seg_yf):
 
 @jit
 def line_fragments(seg_xf, seg_yf, seg_z, seg_c, pattern_start, closed, width, pattern,
-                   repeat, out_xy, out_z, out_c, offset):
+                   repeat, always_from, out_xy, out_z, out_c, offset):
     """Expand line segments into fragments.
 
     Parameters
@@ -85,6 +85,10 @@ def line_fragments(seg_xf, seg_yf, seg_z, seg_c, pattern_start, closed, width, p
         Line width in pixels, replicated across the minor axis.
     pattern, repeat : int
         16-bit line style (bit 0 first) and lsrepeat factor.
+    always_from : int
+        Pixels at line-style positions from this one on are drawn whatever their
+        pattern bit (lsbackup(3G): the last two pixels of a line); a position no line
+        reaches to leave the pattern alone.
     out_xy, out_z, out_c : ndarray
         Output arrays, shapes (F, 2) int64, (F,) int64, (F,) int64 packed RGBA.
     offset : int
@@ -118,7 +122,7 @@ def line_fragments(seg_xf, seg_yf, seg_z, seg_c, pattern_start, closed, width, p
         for k in range(count):
             m = s + k * step
             pos = pattern_start[i] + k
-            if ((pattern >> ((pos // repeat) % 16)) & 1) == 0:
+            if pos < always_from and ((pattern >> ((pos // repeat) % 16)) & 1) == 0:
                 continue
             # Minor coordinate: floor(minor(m) + 0.5), exactly, in fixed point.
             if xmajor:

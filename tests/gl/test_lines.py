@@ -158,3 +158,50 @@ def test_resetls_false_continues_the_pattern_across_lines(win):
     polyline([(1, 7), (4, 7)])  # restarts: (1,7), (3,7)
     assert lit_pixels(ctx) == {(1, 1), (3, 1), (2, 3), (4, 3), (1, 5), (3, 5), (1, 7),
                                (3, 7)}
+
+
+# -- lsbackup(3G): the last two pixels of a line are drawn ---------------------------------
+def test_lsbackup_draws_the_last_two_pixels_of_each_line(win):
+    from vgxsim.gl import getlsbackup, lsbackup
+
+    ctx = win()
+    ctx.colour = (1.0, 1.0, 1.0, 1.0)
+    styled(0x0F0F)  # numbers 0-3 on, 4-7 off, 8-11 on, 12-15 off
+    assert getlsbackup() == 0
+    lsbackup(GL.TRUE)
+    assert getlsbackup() == 1
+    # (0,1)->(13,1): numbers 0..13 at x = 0..13; the pattern draws 0-3, 8-11, and
+    # backup adds the last two, 12 and 13.
+    polyline([(0, 1), (13, 1)])
+    # A polyline: numbers 0..6 along (0,3)->(6,3), 6..13 up (6,3)->(6,10) clipped to
+    # y <= 9: numbers 6..12 at y = 3..9.  The window edge clips the end, so the last
+    # two pixels drawn are numbers 11 and 12 (at y = 8, 9); 12 is off in the pattern.
+    polyline([(0, 3), (6, 3), (6, 10)])
+    # move/draw: each draw is a line: (8,5)->(15,5) numbers 0..7, backup adds 6, 7.
+    move2i(8, 5)
+    draw2i(15, 5)
+    lsbackup(GL.FALSE)
+    polyline([(0, 7), (5, 7)])  # numbers 0..5: 0-3 only, no backup
+    row1 = {(x, 1) for x in (0, 1, 2, 3, 8, 9, 10, 11, 12, 13)}
+    path = [(x, 3) for x in range(7)] + [(6, y) for y in range(4, 10)]
+    poly = {p for n, p in enumerate(path) if (n % 16) // 4 % 2 == 0 or n >= 11}
+    row5 = {(x, 5) for x in (8, 9, 10, 11, 14, 15)}
+    row7 = {(x, 7) for x in (0, 1, 2, 3)}
+    assert lit_pixels(ctx) == row1 | poly | row5 | row7
+
+
+def test_lsbackup_with_half_open_lines_and_no_double_drawing(win):
+    from vgxsim.gl import logicop, lsbackup
+
+    ctx = win()
+    ctx.colour = (1.0, 1.0, 1.0, 1.0)
+    subpixel(GL.TRUE)  # half-open: (0,1)->(9,1) draws x = 0..8, numbers 0..8
+    styled(0x000F)  # numbers 0-3 on
+    lsbackup(GL.TRUE)
+    polyline([(0, 1), (9, 1)])
+    # Solid style under XOR: a pixel drawn twice would come back to 0.
+    styled(0xFFFF)
+    logicop(GL.LO_XOR)
+    polyline([(0, 3), (9, 3)])
+    assert lit_pixels(ctx) == ({(x, 1) for x in (0, 1, 2, 3, 7, 8)}
+                               | {(x, 3) for x in range(9)})

@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, CommandBatch
+from vgxsim.geometry.pipeline import NO_BACKUP
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.lines import count_line_fragments, line_fragments, point_fragments
 from vgxsim.reference import naive
@@ -119,7 +120,7 @@ def line_to_fragments(verts, rs, pattern_start=0):
     out_z = np.empty(total, np.int64)
     out_c = np.empty(total, np.int64)
     nf = line_fragments(seg_xf, seg_yf, seg_z, seg_c, np.array([pattern_start], np.int64),
-                        closed, rs.linewidth, rs.linestyle, rs.lsrepeat,
+                        closed, rs.linewidth, rs.linestyle, rs.lsrepeat, NO_BACKUP,
                         out_xy, out_z, out_c, 0)
     return out_xy[:nf], out_z[:nf], out_c[:nf]
 

@@ -221,13 +221,15 @@ def draw_lines(batch, rs: RasterState, view: Viewing, obj, rgba, segs, pattern_s
 
 
 def draw_polyline(batch, rs: RasterState, view: Viewing, obj, rgba, segs,
-                  pattern_offset: int = 0) -> int:
+                  pattern_offset: int = 0, backup: bool = False) -> int:
     """:func:`draw_lines` for the segments of one polyline, in order, with the
     line-style position counted per pixel drawn (deflinestyle(3G)).
 
     The first segment starts at ``pattern_offset``; each following one starts where
     the previous one's last pixel is, counted with the rasterizer's own step count on
-    the snapped (and clipped) endpoints (docs/numeric_model.md s. 5).
+    the snapped (and clipped) endpoints (docs/numeric_model.md s. 5).  With
+    ``backup`` (lsbackup(3G)) the polyline's last two pixels are drawn whatever the
+    pattern says.
 
     Returns
     -------
@@ -239,7 +241,12 @@ def draw_polyline(batch, rs: RasterState, view: Viewing, obj, rgba, segs,
         return int(pattern_offset)
     steps = line_steps(seg[0], seg[1])
     ends = int(pattern_offset) + np.cumsum(steps)
-    _queue_segments(batch, rs, seg, ends - steps, None)
+    always = NO_BACKUP
+    if backup:
+        # The last pixel drawn sits at position ends[-1] with closed lines (the end
+        # vertex is drawn) and ends[-1] - 1 with half-open ones.
+        always = int(ends[-1]) - (1 if not rs.subpixel else 2)
+    _queue_segments(batch, rs, seg, ends - steps, None, always)
     return int(ends[-1])
 
 
@@ -267,7 +274,12 @@ def _clipped_segments(rs: RasterState, view: Viewing, obj, rgba, segs):
             np.ascontiguousarray(zw.reshape(-1, 2)), seg_c, src)
 
 
-def _queue_segments(batch, rs: RasterState, seg, starts, closed) -> int:
+#: A line-style position no line reaches: every pixel follows the pattern.
+NO_BACKUP = 1 << 62
+
+
+def _queue_segments(batch, rs: RasterState, seg, starts, closed,
+                    always_from: int = NO_BACKUP) -> int:
     seg_xf, seg_yf, seg_z, seg_c, _src = seg
     closed = (not rs.subpixel) if closed is None else closed
     total = count_line_fragments(seg_xf, seg_yf, closed, rs.linewidth)
@@ -275,8 +287,8 @@ def _queue_segments(batch, rs: RasterState, seg, starts, closed) -> int:
     out_z = np.empty(total, np.int64)
     out_c = np.empty(total, np.int64)
     nf = line_fragments(seg_xf, seg_yf, seg_z, seg_c, np.ascontiguousarray(starts, np.int64),
-                        closed, rs.linewidth, rs.linestyle, max(1, rs.lsrepeat), out_xy,
-                        out_z, out_c, 0)
+                        closed, rs.linewidth, rs.linestyle, max(1, rs.lsrepeat),
+                        always_from, out_xy, out_z, out_c, 0)
     batch.add_fragments(out_xy[:nf], out_z[:nf], out_c[:nf], rs)
     return nf
 

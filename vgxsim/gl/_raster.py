@@ -38,7 +38,8 @@ __all__ = [
     "stencil", "sclear", "swritemask", "wmpack", "RGBwritemask", "blendfunction",
     "afunction", "logicop", "backface", "frontface", "getbackface", "shademodel", "getsm",
     "linewidth", "linewidthf", "getlwidth", "deflinestyle", "setlinestyle", "getlstyle",
-    "lsrepeat", "getlsrepeat", "resetls", "getresetls", "linesmooth", "pntsmooth",
+    "lsrepeat", "getlsrepeat", "resetls", "getresetls", "lsbackup", "getlsbackup",
+    "linesmooth", "pntsmooth",
     "polysmooth", "pntsize",
     "pntsizef", "polymode", "getpolymode", "dither", "glcompat", "clear",
 ]
@@ -431,6 +432,25 @@ def resetls(b: int) -> None:
 def getresetls() -> int:
     """1 when the line style restarts at each line (resetls(TRUE)), else 0."""
     return int(getattr(current("getresetls"), "resetls", True))
+
+
+@gl_function()
+def lsbackup(b: int) -> None:
+    """lsbackup(TRUE): the last two pixels of each line are drawn whatever the line
+    style, so styled lines keep visible ends (lsbackup(3G): "it overrides the current
+    linestyle to guarantee that the last two pixels in a line are colored"; FALSE, the
+    default, applies the pattern to every pixel).  A line is one bgnline or
+    bgnclosedline polyline, or one draw (docs/numeric_model.md s. 5)."""
+    args = (b,)
+    ctx = current("lsbackup", args)
+    ctx.lsbackup = bool(as_int("lsbackup", args, "b", b))
+    ctx.vertex_serial += 1  # part of the draw state (a record per value)
+
+
+@gl_function(record=False)
+def getlsbackup() -> int:
+    """1 while lsbackup(TRUE) is in effect, else 0 (getlsbackup(3G))."""
+    return int(getattr(current("getlsbackup"), "lsbackup", False))
 
 
 @gl_function(record=False)

@@ -336,7 +336,8 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
         segs = assembly.line_segments(n, kind == CLOSEDLINE)
         # resetls(FALSE): the pattern continues from the last line drawn.
         start = int(pattern_offset) if state.resetls else ctx.linestyle_pos
-        ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs, start)
+        ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs, start,
+                                          state.lsbackup)
         return
     draw_points(ctx.raw_batch, rs, view, obj, rgba)
 

@@ -63,6 +63,9 @@ class DrawState(NamedTuple):
         The depth-cue ramp (RGB or colour index) when depthcue(TRUE), else None.
     resetls : bool
         Whether the line style restarts at each line (resetls(3G)).
+    lsbackup : bool
+        Whether the last two pixels of each line are drawn whatever the line style
+        (lsbackup(3G)).
     """
 
     raster: RasterState
@@ -76,6 +79,7 @@ class DrawState(NamedTuple):
     fog: FogState | None = None
     depthcue: DepthCue | None = None
     resetls: bool = True
+    lsbackup: bool = False
 
 
 def fog_state(ctx) -> FogState | None:
@@ -149,7 +153,8 @@ def same_state(a: DrawState, b: DrawState) -> bool:
             and a.depth == b.depth and a.lmcolor_mode == b.lmcolor_mode
             and a.concave == b.concave and same_lighting(a.lighting, b.lighting)
             and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
-            and a.depthcue == b.depthcue and a.resetls == b.resetls)
+            and a.depthcue == b.depthcue and a.resetls == b.resetls
+            and a.lsbackup == b.lsbackup)
 
 
 def same_geometry(a: DrawState, b: DrawState) -> bool:
@@ -163,7 +168,8 @@ def same_geometry(a: DrawState, b: DrawState) -> bool:
             and needs_colour(ra) == needs_colour(rb) and ra.texture == rb.texture
             and same_lighting(a.lighting, b.lighting)
             and same_planes(a.user_planes, b.user_planes) and same_fog(a.fog, b.fog)
-            and a.depthcue == b.depthcue and a.resetls == b.resetls)
+            and a.depthcue == b.depthcue and a.resetls == b.resetls
+            and a.lsbackup == b.lsbackup)
 
 
 def same_projection(a: DrawState, b: DrawState) -> bool:
@@ -212,7 +218,8 @@ class StateTable:
                         ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
                         bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
                         depthcue_state(ctx),
-                        bool(getattr(ctx, "resetls", True)))
+                        bool(getattr(ctx, "resetls", True)),
+                        bool(getattr(ctx, "lsbackup", False)))
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1
