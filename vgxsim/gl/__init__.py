@@ -29,6 +29,7 @@ from ._pick import *  # noqa: F401,F403
 from ._query import *  # noqa: F401,F403
 from ._raster import *  # noqa: F401,F403
 from ._readback import *  # noqa: F401,F403
+from ._screens import *  # noqa: F401,F403
 from ._text import *  # noqa: F401,F403
 from ._texture import *  # noqa: F401,F403
 from ._window import *  # noqa: F401,F403
