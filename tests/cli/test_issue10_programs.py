@@ -1,5 +1,6 @@
-"""Programs in the historical binding's style that use popup menus, NURBS, picking and
-the Font Manager (tests/cli/programs), run under ``vgxsim run`` with scripted events.
+"""Programs in the historical binding's style that use popup menus, NURBS, picking,
+the Font Manager and the overlay planes (tests/cli/programs), run under ``vgxsim run``
+with scripted events.
 
 Expected frames are worked out by hand from each program's geometry: pixel positions
 of the clock hand after k quarter hours, the squares a pick at the cursor must hit,
@@ -84,3 +85,30 @@ def test_font_manager_text(tmp_path, capsys):
     # 26-point face: the 13-pixel design doubled; baseline at y = 10, descender 6.
     want[4:30, 4:36] = np.kron(builtin.string_bitmap("Ab"), np.ones((2, 2), bool))
     assert np.array_equal(frame[..., 0] > 0, want)
+
+
+def test_overlay_planes_program(tmp_path, capsys):
+    frames = run("overlay", tmp_path)
+    out = capsys.readouterr().out.splitlines()
+    assert out == ["overlay bits 4", "overlay planes 2", "overlay done True"]
+    # The scene, drawn once: dark blue, and rectf(20, 20, 80, 80) red over pixels
+    # 20..79 (the polygon fill covers the centres on its left and bottom edges only).
+    scene = np.zeros((100, 100, 3), np.uint8)
+    scene[:] = (0, 0, 64)
+    scene[20:80, 20:80] = (255, 0, 0)
+
+    def with_marker(x, y):
+        # recti(x-5, y-5, x+5, y+5): the outline's pixels, ends included, in overlay
+        # index 2 (cyan); rectfi(x-2, y-2, x+3, y+3): pixels x-2..x+2, y-2..y+2 in
+        # index 1 (yellow).  Index 0 elsewhere: the scene shows through.
+        img = scene.copy()
+        img[y - 5, x - 5:x + 6] = img[y + 5, x - 5:x + 6] = (0, 255, 255)
+        img[y - 5:y + 6, x - 5] = img[y - 5:y + 6, x + 5] = (0, 255, 255)
+        img[y - 2:y + 3, x - 2:x + 3] = (255, 255, 0)
+        return img
+
+    assert len(frames) == 4  # the scene, two markers, the marker erased at ESC
+    assert np.array_equal(frames[0], scene)
+    assert np.array_equal(frames[1], with_marker(30, 30))
+    assert np.array_equal(frames[2], with_marker(60, 70))
+    assert np.array_equal(frames[3], scene)  # the normal planes were never touched
