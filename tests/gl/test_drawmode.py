@@ -305,3 +305,46 @@ def test_cursordraw_keeps_a_map_and_shows_nothing():
     gl.drawmode(GL.NORMALDRAW)
     assert gl.getmcolor(1) == (255, 0, 0)
     assert (shown(ctx) == 0).all()
+
+
+def test_readsource_reads_the_overlay_underlay_and_popup_indices():
+    window(over=2)
+    gl.drawmode(GL.OVERDRAW)
+    gl.color(3)
+    gl.pnt2i(2, 1)
+    gl.drawmode(GL.PUPDRAW)
+    gl.color(1)
+    gl.pnt2i(0, 1)
+    gl.drawmode(GL.NORMALDRAW)
+    gl.cpack(0xFF0000FF)
+    gl.pnt2i(1, 1)
+
+    def words():
+        return list(np.frombuffer(gl.lrectread(0, 1, 3, 1), "<u4"))
+
+    gl.readsource(GL.SRC_OVER)
+    assert words() == [0, 0, 3, 0]
+    gl.readsource(GL.SRC_PUP)
+    assert words() == [1, 0, 0, 0]
+    gl.readsource(GL.SRC_UNDER)
+    assert words() == [0, 0, 0, 0]  # no underlay planes: zero
+    gl.readsource(GL.SRC_FRONT)
+    assert words() == [0, 0xFF0000FF, 0, 0]
+
+
+def test_readdisplay_hints_leave_framebuffers_out():
+    window(over=2)
+    gl.cpack(0xFF00FF00)
+    gl.clear()
+    gl.drawmode(GL.OVERDRAW)
+    gl.color(1)  # red (makemap default)
+    gl.pnt2i(0, 0)
+    gl.drawmode(GL.NORMALDRAW)
+    ox, oy = gl.getorigin()
+
+    def pixel(hints):
+        return int(np.frombuffer(gl.readdisplay(ox, oy, ox, oy, hints), "<u4")[0])
+
+    assert pixel(0) == 0xFF0000FF
+    assert pixel(GL.RD_IGNORE_OVERLAY) == 0xFF00FF00
+    assert pixel(GL.RD_IGNORE_PUP | GL.RD_IGNORE_UNDERLAY) == 0xFF0000FF

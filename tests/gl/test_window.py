@@ -246,8 +246,8 @@ def test_subpixel_and_readsource_store_registers():
     assert ctx_of(g).raster.subpixel is True
     gl.readsource(GL.SRC_FRONT)
     assert ctx_of(g).readsource == GL.SRC_FRONT
-    with pytest.raises(GLValueError, match=r"readsource\(SRC_PUP\)"):
-        gl.readsource(GL.SRC_PUP)
+    with pytest.raises(GLValueError, match=r"readsource\(SRC_FRAMEGRABBER\)"):
+        gl.readsource(GL.SRC_FRAMEGRABBER)
     with pytest.raises(GLValueError, match=r"readsource\(42\)"):
         gl.readsource(42)
 

@@ -91,8 +91,20 @@ def _source(ctx, name: str, args: tuple, allow_z: bool = True) -> np.ndarray:
             raise GLUsageError(f"{describe(name, args)}: readsource(SRC_ZBUFFER) but the "
                                "window has no z-buffer (zbsize(0) was configured)")
         return ctx.fb.z.view(np.uint32)
+    layer = _LAYER_SOURCES.get(src)
+    if layer is not None:
+        return ctx.layer_buffer(layer)
     which = {int(GL.SRC_FRONT): "front", int(GL.SRC_BACK): "back"}.get(src, "auto")
     return ctx.colour_buffer(which)
+
+
+#: readdisplay hints that leave a framebuffer out of the picture.
+_IGNORE_HINTS = ((int(GL.RD_IGNORE_PUP), "popup"), (int(GL.RD_IGNORE_OVERLAY), "overlay"),
+                 (int(GL.RD_IGNORE_UNDERLAY), "underlay"))
+
+#: readsource tokens of the extra framebuffers (vgxsim.pipeline.layers names).
+_LAYER_SOURCES = {int(GL.SRC_PUP): "popup", int(GL.SRC_OVER): "overlay",
+                  int(GL.SRC_UNDER): "underlay"}
 
 
 def _returned_size(name: str, args: tuple, x1: int, y1: int, x2: int, y2: int
@@ -330,11 +342,14 @@ def readdisplay(x1: int, y1: int, x2: int, y2: int, hints: int = 0) -> bytes:
 
     The headless screen shows every open window at its origin (later windows on
     top, colour-mapped in cmode) on black (0); the result is packed as
-    :func:`lrectread`'s.  ``hints`` (RD_* flags) are accepted and ignored.
+    :func:`lrectread`'s.  ``hints``: RD_IGNORE_PUP, RD_IGNORE_OVERLAY and
+    RD_IGNORE_UNDERLAY leave those planes out of the picture (readdisplay(3G)); the
+    other RD_* flags are accepted and ignored.
     """
     args = (x1, y1, x2, y2, hints)
     r = _corners("readdisplay", args)
-    as_int("readdisplay", args, "hints", hints)
+    flags = as_int("readdisplay", args, "hints", hints)
+    ignore = frozenset(name for bit, name in _IGNORE_HINTS if flags & bit)
     w, h = _returned_size("readdisplay", args, *r)
     out = np.zeros((h, w), np.uint32)
     for gid in sorted(session.windows):
@@ -345,7 +360,7 @@ def readdisplay(x1: int, y1: int, x2: int, y2: int, hints: int = 0) -> bytes:
         ya, yb = _clip(r[1] - oy, r[3] - oy, ctx.height)
         if xa > xb or ya > yb:
             continue
-        img = ctx.display_rgba()
+        img = ctx.display_rgba(ignore)
         words = np.ascontiguousarray(img).view("<u4").reshape(img.shape[:2])
         out[ya + oy - r[1]:yb + oy - r[1] + 1, xa + ox - r[0]:xb + ox - r[0] + 1] = \
             words[ya:yb + 1, xa:xb + 1]

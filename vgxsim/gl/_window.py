@@ -631,7 +631,8 @@ def backbuffer(b: int) -> None:
     current("backbuffer", args).raster.set(backbuffer=bool(v))
 
 
-_SOURCES = (GL.SRC_AUTO, GL.SRC_FRONT, GL.SRC_BACK, GL.SRC_ZBUFFER)
+_SOURCES = (GL.SRC_AUTO, GL.SRC_FRONT, GL.SRC_BACK, GL.SRC_ZBUFFER, GL.SRC_PUP,
+            GL.SRC_OVER, GL.SRC_UNDER)
 
 
 @gl_function(record=True)
@@ -640,13 +641,14 @@ def readsource(src: int) -> None:
 
     SRC_AUTO (the default) reads the back buffer of a double-buffered window and the
     front buffer otherwise; SRC_FRONT, SRC_BACK; SRC_ZBUFFER makes lrectread return
-    z values.  The pop-up, overlay, underlay and frame-grabber sources are not
-    emulated and raise GLValueError.
+    z values; SRC_PUP, SRC_OVER and SRC_UNDER read the colour indices of the pop-up,
+    overlay and underlay planes (drawmode(3G); 0 where they have none).  The frame
+    grabber is not emulated (GD_FRAMEGRABBER 0) and raises GLValueError.
     """
     args = (src,)
     s = as_int("readsource", args, "src", src)
-    if s in (GL.SRC_PUP, GL.SRC_OVER, GL.SRC_UNDER, GL.SRC_FRAMEGRABBER):
-        raise GLValueError(f"{describe('readsource', args)}: pop-up, overlay, underlay and "
-                           "frame-grabber planes are not emulated")
+    if s == GL.SRC_FRAMEGRABBER:
+        raise GLValueError(f"{describe('readsource', args)}: there is no frame grabber "
+                           "(getgdesc(GD_FRAMEGRABBER) is 0)")
     s = check_token("readsource", args, "src", s, _SOURCES, "SRC_")
     current("readsource", args).readsource = s

@@ -259,6 +259,15 @@ class Context:
             return self.fb.back
         return self.fb.front
 
+    def layer_buffer(self, name: str) -> np.ndarray:
+        """The (H, W) uint32 index words of the 'overlay', 'underlay' or 'popup'
+        planes, after a flush (zeros where the window has none)."""
+        self.flush()
+        ps = self.plane_sets[name]
+        if ps.fb is None or ps.bits == 0:
+            return np.zeros((self.height, self.width), np.uint32)
+        return ps.fb.front
+
     def read_rgba(self, which: str = "front") -> np.ndarray:
         """(H, W, 4) uint8 RGBA copy of a colour buffer, row 0 = bottom."""
         return unpack_rgba(self.colour_buffer(which))
@@ -275,12 +284,13 @@ class Context:
             self.sink.write(self.display_rgba())
         self.frames += 1
 
-    def display_rgba(self) -> np.ndarray:
+    def display_rgba(self, ignore=frozenset()) -> np.ndarray:
         """What the monitor shows: the front buffer as RGBA (colour-mapped in cmode),
         under the pop-up and overlay planes and over the underlay planes where they
-        have been configured (vgxsim.pipeline.layers.display)."""
+        have been configured (vgxsim.pipeline.layers.display); ``ignore`` names
+        framebuffers ('popup', 'overlay', 'underlay') to leave out."""
         self.flush()
-        return layers.display(self)
+        return layers.display(self, ignore)
 
     def colormap_lookup(self, packed: np.ndarray) -> np.ndarray:
         """(H, W, 4) uint8 RGBA of index words through the current colour map."""

@@ -109,11 +109,11 @@ def normal_modes(ctx) -> dict:
     return ctx.plane_sets[NORMAL].modes
 
 
-def display(ctx) -> np.ndarray:
+def display(ctx, ignore=frozenset()) -> np.ndarray:
     """(H, W, 4) uint8: what the monitor shows of the window (after a flush): the
     normal front buffer, colour-mapped in cmode, with the pop-up, overlay and
     underlay planes composited by underlay(3G)'s rule
-    (:func:`vgxsim.state.layers.composite`)."""
+    (:func:`vgxsim.state.layers.composite`), except those named in ``ignore``."""
     modes = normal_modes(ctx)
     config, front = modes["config"], modes["fb"].front
     if config.rgb:
@@ -124,7 +124,7 @@ def display(ctx) -> np.ndarray:
     shown = {}
     for name in ("underlay", "overlay", "popup"):
         ps = ctx.plane_sets[name]
-        if ps.bits and ps.fb is not None:
+        if ps.bits and ps.fb is not None and name not in ignore:
             cmap = ctx.colormap if ctx.planes_selected == name else ps.modes["colormap"]
             shown[name] = (ps.fb.front, ps.bits, cmap)
     if not shown:
