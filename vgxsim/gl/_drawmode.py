@@ -1,5 +1,6 @@
 """drawmode, overlay, underlay and the older pop-up calls (pupmode, endpupmode,
-pupcolor): drawing into the overlay, underlay and pop-up framebuffers.
+pupcolor): drawing into the overlay, underlay and pop-up framebuffers; zdraw: the
+z-buffer as a colour buffer of the normal framebuffer.
 
 drawmode(3G) directs drawing, and the modes each framebuffer keeps for itself
 (color, mapcolor, writemask and their getters, frontbuffer/backbuffer, readsource),
@@ -29,9 +30,17 @@ from vgxsim.pipeline.context import replace_config
 from vgxsim.state import colormap
 from vgxsim.state.layers import MAX_BITS
 
-from ._core import GLUsageError, GLValueError, as_int, check_token, current, describe, gl_function
+from ._core import (
+    GLUsageError,
+    GLValueError,
+    as_int,
+    check_token,
+    current,
+    describe,
+    gl_function,
+)
 
-__all__ = ["drawmode", "overlay", "underlay", "pupmode", "endpupmode", "pupcolor"]
+__all__ = ["drawmode", "overlay", "underlay", "pupmode", "endpupmode", "pupcolor", "zdraw"]
 
 #: drawmode tokens -> the framebuffer's name in vgxsim.pipeline.layers.
 FRAMEBUFFER_OF = {int(GL.NORMALDRAW): layers.NORMAL, int(GL.OVERDRAW): "overlay",
@@ -133,3 +142,65 @@ def pupcolor(clr: int) -> None:
         modes = ctx.plane_sets["popup"].modes
         modes["colour_index"] = c
         modes["colour"] = colormap.index_rgba(c)
+
+
+# -- zdraw ------------------------------------------------------------------------------
+@gl_function()
+def zdraw(b: int) -> None:
+    """Draw colours into the z-buffer too (zdraw(3G)).
+
+    "When zbuffer is FALSE ... it is possible to treat the z-buffer as a third color
+    bitplane buffer": with ``zdraw(TRUE)`` lines, polygons, clears and the pixel
+    writes (lrectwrite, rectcopy) store their colour words -- the index in colour-map
+    mode -- in the z-buffer, besides the colour buffers frontbuffer/backbuffer
+    enable; readsource(SRC_ZBUFFER) reads them back (lrectread, rectcopy).  The
+    z-buffer has 24 bits (GD_BITS_NORM_ZBUFFER): it keeps red, green and blue (or the
+    index) as a signed 24-bit z, so alpha is lost and a word whose blue byte is 128 or
+    more reads back with 0xFF above it (vgxsim.pipeline.layers.ZDrawBatch).  No depth
+    test is made meanwhile ("you must turn z-buffer mode off"; vgxsim ignores
+    zbuffer(TRUE) while zdraw is on, where IRIS GL leaves it undefined).  gconfig
+    resets it to FALSE.
+
+    Raises
+    ------
+    GLUsageError
+        Without a z-buffer; in a draw mode other than NORMALDRAW ("zdraw should not
+        be called while drawing to the overlay, underlay, or pop-up framebuffers");
+        or when the z-buffer and both colour buffers would be drawn at once (vgxsim's
+        fragment kernels write two buffers: use frontbuffer or backbuffer alone).
+    """
+    args = (b,)
+    ctx = current("zdraw", args)
+    on = bool(as_int("zdraw", args, "b", b))
+    if on:
+        check_zdraw("zdraw", args, ctx, ctx.raster.frontbuffer, ctx.raster.backbuffer)
+    layers.set_zdraw(ctx, on)
+
+
+def check_zdraw(name: str, args: tuple, ctx, front: bool, back: bool) -> None:
+    """GLUsageError unless zdraw can draw with these frontbuffer/backbuffer values."""
+    if ctx.planes_selected != layers.NORMAL:
+        raise GLUsageError(f"{describe(name, args)}: zdraw works in NORMALDRAW only (only "
+                           "the normal framebuffer has a z-buffer, zdraw(3G))")
+    if ctx.fb.z is None:
+        raise GLUsageError(f"{describe(name, args)}: the window has no z-buffer "
+                           "(zbsize(0) was configured)")
+    if ctx.fb.back is not None and front and back:
+        raise GLUsageError(f"{describe(name, args)}: zdraw with both frontbuffer and "
+                           "backbuffer is three colour buffers; vgxsim draws at most two "
+                           "at once (the z-buffer and one of them)")
+
+
+
+def set_draw_buffer(name: str, args: tuple, ctx, **change) -> None:
+    """frontbuffer/backbuffer: store the register; under zdraw, check the new
+    combination first and then draw through the new choice of buffers."""
+    if ctx.zdraw_batch is None:
+        ctx.raster.set(**change)
+        return
+    new = {"frontbuffer": ctx.raster.frontbuffer, "backbuffer": ctx.raster.backbuffer,
+           **change}
+    check_zdraw(name, args, ctx, new["frontbuffer"], new["backbuffer"])
+    ctx.flush()  # what is queued is drawn with the buffers it was queued for
+    ctx.raster.set(**change)
+    layers.set_zdraw(ctx, True)

@@ -285,7 +285,7 @@ def getbuffer() -> int:
         bits = (GL.FRNTBUFFER if rs.frontbuffer else 0) | (GL.BCKBUFFER if rs.backbuffer else 0)
     else:
         bits = int(GL.FRNTBUFFER)
-    if getattr(rs, "zdraw", False) or getattr(ctx, "zdraw", False):
+    if getattr(ctx, "zdraw_batch", None) is not None:
         bits |= GL.DRAWZBUFFER
     return int(bits)
 

@@ -260,8 +260,10 @@ def _write_rect(ctx, r, words: np.ndarray) -> None:
 def rectcopy(x1: int, y1: int, x2: int, y2: int, newx: int, newy: int) -> None:
     """Copy a rectangle of pixels to lower-left corner (newx, newy) (rectcopy(3G)).
 
-    The source is the ``readsource`` buffer; the copy is made before anything is
-    written, so overlapping copies work ("Self-intersecting copies work correctly").
+    The source is the ``readsource`` buffer -- with SRC_ZBUFFER the z-buffer's words,
+    copied as colours (how a picture saved there with zdraw(3G) comes back); the copy
+    is made before anything is written, so overlapping copies work
+    ("Self-intersecting copies work correctly").
     The destination is masked by the viewport, the screen mask and the write mask;
     source pixels outside the window, and pixels that would land outside it, are not
     copied.  ``rectzoom`` is not applied.
@@ -271,7 +273,7 @@ def rectcopy(x1: int, y1: int, x2: int, y2: int, newx: int, newy: int) -> None:
     nx = as_int("rectcopy", args, "newx", newx)
     ny = as_int("rectcopy", args, "newy", newy)
     ctx = current("rectcopy", args)
-    plane = _source(ctx, "rectcopy", args, allow_z=False)
+    plane = _source(ctx, "rectcopy", args)
     h, w = plane.shape
     # Clip the source to the window, then its image at (newx, newy) to the window:
     # only pixels that exist and land inside are copied, so the cost is bounded by

@@ -64,6 +64,7 @@ from ._core import (
     session,
     window_of,
 )
+from ._drawmode import set_draw_buffer
 from ._matrix import load_window_projection
 
 __all__ = [
@@ -620,7 +621,7 @@ def frontbuffer(b: int) -> None:
     have a choice."""
     args = (b,)
     v = as_int("frontbuffer", args, "b", b)
-    current("frontbuffer", args).raster.set(frontbuffer=bool(v))
+    set_draw_buffer("frontbuffer", args, current("frontbuffer", args), frontbuffer=bool(v))
 
 
 @gl_function(record=True)
@@ -628,7 +629,7 @@ def backbuffer(b: int) -> None:
     """Draw into the back buffer (backbuffer(3G)); the default when double-buffered."""
     args = (b,)
     v = as_int("backbuffer", args, "b", b)
-    current("backbuffer", args).raster.set(backbuffer=bool(v))
+    set_draw_buffer("backbuffer", args, current("backbuffer", args), backbuffer=bool(v))
 
 
 _SOURCES = (GL.SRC_AUTO, GL.SRC_FRONT, GL.SRC_BACK, GL.SRC_ZBUFFER, GL.SRC_PUP,

@@ -134,6 +134,10 @@ class Context:
         selected = getattr(self, "planes_selected", layers.NORMAL)
         if selected != layers.NORMAL:
             layers.select(self, layers.NORMAL)
+        if getattr(self, "zdraw_batch", None) is not None:
+            # zdraw(3G): "By default, and after each call to gconfig, zdraw is FALSE."
+            layers.set_zdraw(self, False)
+        self.zdraw_batch = None
         if getattr(self, "_batch", None) is not None:
             self.batch.flush()
         self.config = config

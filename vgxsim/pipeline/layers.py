@@ -40,7 +40,7 @@ NORMAL = "normal"
 WINDOW_MODES = ("config", "fb", "_batch", "colormap", "multimap", "curmap", "colour",
                 "colour_index", "readsource")
 #: Raster registers it keeps once per framebuffer (writemask, frontbuffer, backbuffer).
-REGISTER_MODES = ("wmpack", "frontbuffer", "backbuffer")
+REGISTER_MODES = ("wmpack", "frontbuffer", "backbuffer", "zdraw_back")
 
 
 def configure(ctx) -> None:
@@ -67,7 +67,8 @@ def _fresh_modes(ctx, cmap: np.ndarray) -> dict:
     return {"config": replace(ctx.config, rgb=False, zbits=0, stencil=0, acbits=0),
             "fb": None, "_batch": None, "colormap": cmap, "multimap": False, "curmap": 0,
             "colour": colormap.index_rgba(0), "colour_index": 0, "readsource": 0,
-            "wmpack": 0xFFFFFFFF, "frontbuffer": True, "backbuffer": False}
+            "wmpack": 0xFFFFFFFF, "frontbuffer": True, "backbuffer": False,
+            "zdraw_back": None}
 
 
 def _allocate(ctx, ps: PlaneSet) -> None:
@@ -131,3 +132,62 @@ def display(ctx, ignore=frozenset()) -> np.ndarray:
         return picture
     index_bits = 8 if modes["multimap"] else 12
     return composite(picture, nonzero_colour(front, config.rgb, index_bits), shown)
+
+
+# -- zdraw(3G): the z-buffer as a colour buffer ---------------------------------------
+def zdraw_targets(ctx) -> list[np.ndarray]:
+    """The buffers drawing goes to under zdraw(TRUE), as uint32 planes: the z-buffer,
+    then the colour buffers frontbuffer/backbuffer enable (zdraw(3G): "All
+    combinations of values for backbuffer, frontbuffer, and zdraw are valid while the
+    normal framebuffer is in double buffer mode.  While ... in single buffer mode,
+    backbuffer is ignored, and frontbuffer can be disabled only while zdraw is
+    enabled").  The normal framebuffer must be selected."""
+    fb, rs = ctx.fb, ctx.raster
+    out = [fb.z.view(np.uint32)]
+    if fb.back is not None and rs.backbuffer:
+        out.append(fb.back)
+    if rs.frontbuffer:
+        out.append(fb.front)
+    return out
+
+
+class ZDrawBatch(CommandBatch):
+    """The software batch of zdraw(TRUE): after each flush the z-buffer keeps the low
+    24 bits of what was drawn into it, as a signed 24-bit value like every z
+    (GD_BITS_NORM_ZBUFFER 24: red, green and blue -- or a colour index -- survive,
+    alpha does not).  Depth values already there are unchanged by this."""
+
+    def flush(self) -> None:
+        if self.nprims == 0:
+            return
+        super().flush()
+        z = self.fb.z
+        z[:] = ((z & 0xFFFFFF) ^ 0x800000) - 0x800000
+
+
+def set_zdraw(ctx, on: bool) -> None:
+    """Draw colours into the z-buffer too (on) or not (zdraw(3G)).
+
+    The kernels write two colour buffers; with zdraw their first is the z-buffer and
+    their second the colour buffer also enabled, through a software batch over a
+    :meth:`~vgxsim.state.planes.Framebuffer.view` of the window's planes (the caller
+    checks that at most one colour buffer is enabled).
+    """
+    ctx.flush()
+    if ctx.zdraw_batch is None and not on:
+        return
+    if ctx.zdraw_batch is None:
+        ctx.zdraw_batch = ctx._batch  # the window's own batch, back at zdraw(FALSE)
+    if not on:
+        ctx._batch, ctx.zdraw_batch = ctx.zdraw_batch, None
+        ctx.raster.set(zdraw_back=None)
+        ctx.stream.forget()
+        return
+    fb = ctx.fb
+    targets = zdraw_targets(ctx)
+    second = targets[1] if len(targets) > 1 else None
+    view = Framebuffer.view(replace(fb.config, double=second is not None), targets[0],
+                            second, fb.z, fb.stencil)
+    ctx._batch = ZDrawBatch(view)
+    ctx.raster.set(zdraw_back=second is not None)
+    ctx.stream.forget()

@@ -72,6 +72,17 @@ class Framebuffer:
         self.stencil = np.zeros((h, w), dtype=np.uint8) if config.stencil > 0 else None
         self.accum = np.zeros((h, w, 4), dtype=np.int16) if config.acbits > 0 else None
 
+    @classmethod
+    def view(cls, config: PlaneConfig, front: np.ndarray, back: np.ndarray | None,
+             z: np.ndarray | None, stencil: np.ndarray | None) -> Framebuffer:
+        """Planes made of other planes' arrays (nothing is allocated): what a
+        command batch renders into when drawing goes to a different choice of
+        buffers, as zdraw(3G)'s z-buffer used as a colour buffer."""
+        fb = cls.__new__(cls)
+        fb.config = config
+        fb.front, fb.back, fb.z, fb.stencil, fb.accum = front, back, z, stencil, None
+        return fb
+
     @property
     def width(self) -> int:
         return self.config.width

@@ -58,6 +58,9 @@ class RasterRegisters:
         # planes of the overlay, underlay or pop-up framebuffer selected (their mask),
         # and snapshots carry what those framebuffers can do (see _layer_state).
         self.layer_mask: int | None = None
+        # zdraw(3G): None, or whether the kernels' second colour buffer is drawn while
+        # the z-buffer is the first (vgxsim.pipeline.layers.zdraw_planes).
+        self.zdraw_back: bool | None = None
         self._snapshot: RasterState | None = None
         # Snapshots by register values: a program that alternates between a few
         # states (the 1991 shadow faces: stencil INCR, DECR, INCR, ...) gets the
@@ -85,7 +88,8 @@ class RasterRegisters:
                 self.blend, self.logicop, self.wmpack, self.afunction, self.shademodel,
                 self.subpixel, self.backface, self.frontface, self.frontbuffer,
                 self.backbuffer, self.viewport, self.scrmask, self.linewidth,
-                self.linestyle, self.lsrepeat, self.pntsize, self.texture, self.layer_mask)
+                self.linestyle, self.lsrepeat, self.pntsize, self.texture, self.layer_mask,
+                self.zdraw_back)
 
     def snapshot(self) -> RasterState:
         """The current RasterState (cached until a register changes; one object per
@@ -115,6 +119,12 @@ class RasterRegisters:
             )
             if self.layer_mask is not None:
                 self._snapshot = _layer_state(self._snapshot, self.layer_mask)
+            if self.zdraw_back is not None:
+                # zdraw(3G): the z-buffer is a colour buffer, so no depth test ("you
+                # must turn z-buffer mode off"); the kernels' front buffer is the
+                # z-buffer and their back buffer the one colour buffer also drawn.
+                self._snapshot = replace(self._snapshot, zbuffer=False, draw_front=True,
+                                         draw_back=self.zdraw_back)
             if len(self._memo) > 4096:
                 self._memo.clear()
             self._memo[key] = self._snapshot
