@@ -51,11 +51,12 @@ def configure(ctx) -> None:
     old = getattr(ctx, "plane_sets", {})
     config = ctx.config
     sets = {NORMAL: PlaneSet(NORMAL)}
+    view = replace(config, rgb=False, zbits=0, stencil=0, acbits=0)  # what calls see
     for name, most in MAX_BITS.items():
         bits = {"overlay": config.overlay, "underlay": config.underlay}.get(name, most)
         prev = old.get(name)
-        cmap = prev.modes["colormap"] if prev is not None else default_layer_map(name)
-        ps = PlaneSet(name, bits, modes=_fresh_modes(ctx, cmap))
+        cmap = prev.modes["colormap"] if prev is not None else None  # made at first use
+        ps = PlaneSet(name, bits, modes=_fresh_modes(view, cmap))
         if bits and name in ("overlay", "underlay"):
             _allocate(ctx, ps)  # granted by this gconfig: the planes start cleared
         sets[name] = ps
@@ -63,8 +64,8 @@ def configure(ctx) -> None:
     ctx.planes_selected = NORMAL
 
 
-def _fresh_modes(ctx, cmap: np.ndarray) -> dict:
-    return {"config": replace(ctx.config, rgb=False, zbits=0, stencil=0, acbits=0),
+def _fresh_modes(view, cmap: np.ndarray | None) -> dict:
+    return {"config": view,
             "fb": None, "_batch": None, "colormap": cmap, "multimap": False, "curmap": 0,
             "colour": colormap.index_rgba(0), "colour_index": 0, "readsource": 0,
             "wmpack": 0xFFFFFFFF, "frontbuffer": True, "backbuffer": False,
@@ -72,6 +73,8 @@ def _fresh_modes(ctx, cmap: np.ndarray) -> dict:
 
 
 def _allocate(ctx, ps: PlaneSet) -> None:
+    if ps.modes["colormap"] is None:
+        ps.modes["colormap"] = default_layer_map(ps.name)
     ps.fb = Framebuffer(layer_config(ctx.config.width, ctx.config.height))
     ps.modes["fb"] = ps.fb
     ps.modes["_batch"] = CommandBatch(ps.fb)
