@@ -348,3 +348,35 @@ def test_readdisplay_hints_leave_framebuffers_out():
     assert pixel(0) == 0xFF0000FF
     assert pixel(GL.RD_IGNORE_OVERLAY) == 0xFF00FF00
     assert pixel(GL.RD_IGNORE_PUP | GL.RD_IGNORE_UNDERLAY) == 0xFF0000FF
+
+
+def test_single_buffered_frames_start_from_what_fresh_planes_show():
+    # A cmode window with underlay planes whose index 0 is blue: fresh planes show
+    # blue (the normal planes' 0 lets the underlay show).  Clearing the normal planes
+    # to index 0 leaves the screen as it was, so no frame is produced.
+    ctx = window(rgb=False, under=2)
+    frames = []
+
+    class Sink:
+        def write(self, img):
+            frames.append(img.copy())
+
+    ctx.sink = Sink()
+    gl.drawmode(GL.UNDERDRAW)
+    gl.mapcolor(0, 0, 0, 255)
+    gl.drawmode(GL.NORMALDRAW)
+    gl.color(0)
+    gl.clear()
+    gl.gflush()
+    assert frames == []  # the screen did not change
+    gl.drawmode(GL.OVERDRAW)  # no overlay planes: nothing stored, nothing shown
+    gl.color(1)
+    gl.clear()
+    gl.drawmode(GL.NORMALDRAW)
+    gl.gflush()
+    assert frames == []
+    gl.color(1)
+    gl.pnt2i(0, 0)
+    gl.gflush()
+    assert len(frames) == 1
+    assert tuple(frames[0][0, 0]) == (255, 0, 0, 255) and tuple(frames[0][1, 1]) == BLUE

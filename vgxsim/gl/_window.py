@@ -48,6 +48,7 @@ from dataclasses import replace
 import numpy as np
 
 from vgxsim import DEVICE, GL
+from vgxsim.pipeline import layers
 from vgxsim.pipeline.context import Context, replace_config
 from vgxsim.state.planes import MAX_STENCIL_PLANES
 
@@ -171,10 +172,7 @@ def present(ctx: Context, force: bool = False) -> bool:
     rec = window_of(ctx)
     shown = rec.shown
     if isinstance(shown, str):  # "fresh": the planes as allocated (all zero)
-        zero = np.zeros((1, 1), np.uint32)
-        pixel = (np.zeros(4, np.uint8) if ctx.config.rgb
-                 else ctx.colormap_lookup(zero)[0, 0])
-        shown = np.broadcast_to(pixel, img.shape)
+        shown = np.broadcast_to(layers.fresh_pixel(ctx), img.shape)
     if not force and shown is not None and np.array_equal(img, shown):
         return False
     ctx.sink.write(img)

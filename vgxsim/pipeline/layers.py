@@ -194,3 +194,18 @@ def set_zdraw(ctx, on: bool) -> None:
     ctx._batch = ZDrawBatch(view)
     ctx.raster.set(zdraw_back=second is not None)
     ctx.stream.forget()
+
+
+def fresh_pixel(ctx) -> np.ndarray:
+    """(4,) uint8: what the monitor shows of freshly allocated (all zero) planes --
+    the normal planes' 0 (black, or index 0 through the normal map), or index 0
+    through the underlay map where underlay planes exist (underlay(3G))."""
+    under = ctx.plane_sets["underlay"]
+    if under.bits:
+        cmap = ctx.colormap if ctx.planes_selected == "underlay" else under.modes["colormap"]
+        return np.array([*cmap[0], 255], np.uint8)
+    modes = normal_modes(ctx)
+    if modes["config"].rgb:
+        return np.zeros(4, np.uint8)
+    zero = np.zeros((1, 1), np.uint32)
+    return colormap.lookup(modes["colormap"], zero, modes["multimap"], modes["curmap"])[0, 0]
