@@ -46,8 +46,9 @@ REGISTER_MODES = ("wmpack", "frontbuffer", "backbuffer", "zdraw_back")
 def configure(ctx) -> None:
     """gconfig for the extra framebuffers (the window has the normal framebuffer
     selected): overlay and underlay get the planes ``ctx.config`` asks for, cleared;
-    the pop-up and cursor ones keep theirs; every colour map is kept (the maps are
-    the monitor's, not the window's planes)."""
+    the pop-up and cursor planes are allocated anew, at the window's size, when a
+    drawmode next selects them; every colour map is kept (the maps are the
+    monitor's, not the window's planes)."""
     old = getattr(ctx, "plane_sets", {})
     config = ctx.config
     sets = {NORMAL: PlaneSet(NORMAL)}
