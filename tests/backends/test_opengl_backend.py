@@ -211,3 +211,46 @@ def test_upload_switch_keeps_planes_equal_to_software(gl_win, monkeypatch, chang
                 assert np.abs(a.astype(np.int64) - b).max() <= 1
             else:
                 assert np.array_equal(a, b)
+
+
+def _binding(nc=3, minf=0, magf=0, env=0):
+    from vgxsim.state import codes as C
+    from vgxsim.state.textures import TexEnv, TexGen, Texture, binding_id
+
+    texels = np.zeros((2, 2, 4), np.uint8)
+    tex = Texture(texels, nc, minf, magf, C.TEXW_REPEAT, C.TEXW_CLAMP)
+    return binding_id(tex, TexEnv(env), TexGen())
+
+
+def test_texture_states_gl_draws_and_those_it_leaves_to_software(monkeypatch):
+    from vgxsim.state import codes as C
+
+    point, bilinear = C.TEXF_POINT, C.TEXF_BILINEAR
+    assert gl_batch.texture_inexpressible(_binding()) == []
+    assert gl_batch.texture_inexpressible(_binding(4, point, point, C.TEV_BLEND)) == []
+    assert gl_batch.texture_inexpressible(_binding(1, point, bilinear)) == [
+        "unequal minify and magnify texture filters"]
+    assert gl_batch.texture_inexpressible(_binding(1, point, point, C.TEV_DECAL)) == [
+        "TV_DECAL on a 1- or 2-component texture"]
+    assert gl_batch.texture_inexpressible(_binding(3, 7, 7)) == [
+        "texture filter not point or bilinear"]  # e.g. a mipmap filter
+    both = _binding(3, bilinear, bilinear)
+    assert gl_batch.texture_inexpressible(both) == [
+        "bilinear texture filter (8-bit weights in GL)"]
+    monkeypatch.setattr(gl_batch, "NATIVE_BILINEAR", True)
+    assert gl_batch.texture_inexpressible(both) == []
+
+
+def test_fragments_under_a_texture_binding_are_not_textured(gl_win):
+    # numeric_model section 14: only triangles are textured.  The texture's texels
+    # are all zero, so a textured (modulated) fragment would come out black.
+    from vgxsim.state.raster import RasterState
+
+    ctx = gl_win(W, H)
+    rs = RasterState(scissor=(0, W - 1, 0, H - 1), texture=_binding())
+    xy = np.array([[1, 1], [2, 3]], np.int64)
+    ctx.raw_batch.add_fragments(xy, np.zeros(2, np.int64),
+                                np.full(2, 0xFF336699, np.int64), rs)
+    ctx.flush()
+    assert ctx.fb.front[1, 1] == ctx.fb.front[3, 2] == 0xFF336699
+    assert (ctx.fb.front == 0xFF336699).sum() == 2

@@ -14,6 +14,8 @@ stencil, alpha test, blending, logic ops, write masks -- is OpenGL's.
 
 from __future__ import annotations
 
+from dataclasses import fields, replace
+
 import numpy as np
 
 from vgxsim.backends.opengl.surface import Surface, available
@@ -28,6 +30,10 @@ _TRIANGLES, _POINTS, _CLEAR, _CPU = range(4)
 #: Test switch: with False, states OpenGL cannot express are drawn by OpenGL anyway
 #: (approximately) instead of by the software batch.
 EMULATE_INEXPRESSIBLE = True
+
+#: Bilinear texturing drawn by GL (True; within allowed difference D6) or by the
+#: software batch, exactly (False).  Point-sampled textures are always GL's.
+NATIVE_BILINEAR = False
 
 
 def _partial(value: int, width: int) -> bool:
@@ -64,9 +70,53 @@ def inexpressible(rs: RasterState, stencil_planes: int, clear: bool = False) -> 
         # IRIS clamps ST_INCR at 2**stensize - 1; GL's 8-bit buffer at 255.
         out.append("ST_INCR with fewer than 8 stencil planes")
     if not clear and rs.texture:
-        # The texture stage (numeric_model section 14) is not mapped onto GL texture
-        # state yet: textured triangles are drawn by the software batch, exactly.
-        out.append("texturing")
+        out.extend(texture_inexpressible(rs.texture))
+    if not clear and getattr(rs, "drawmode", 0) != 0:
+        # Overlay, underlay and pop-up planes (drawmode(3G) other than NORMALDRAW)
+        # have no GL attachment here: the software batch draws them.
+        out.append("drawmode other than NORMALDRAW")
+    return out
+
+
+def texture_inexpressible(ident: int) -> list[str]:
+    """What of texture binding ``ident`` GL 1.x texturing cannot draw as the
+    numeric model (docs/numeric_model.md section 14) does (empty: drawn by GL).
+
+    GL_NEAREST and GL_REPEAT/GL_CLAMP_TO_EDGE are the model's point filter and
+    wraps; GL_MODULATE/GL_DECAL/GL_BLEND its environments (DECAL on 3 and 4
+    components: GL leaves it undefined below).  Texture coordinates arrive as the
+    pipeline computed them (texgen, t2*, clipping), as (s/w, t/w, 0, 1/w), and GL's
+    per-fragment division by q is the model's perspective correction.  Not exact:
+    llvmpipe's bilinear weights have 8 bits (the model's are float64) -- allowed
+    difference D6 when :data:`NATIVE_BILINEAR` is on; and GL chooses between
+    minifying and magnifying from differences over a 2 x 2 pixel quad, not from
+    the exact derivatives of u and v, so unequal TX_MINFILTER and TX_MAGFILTER stay
+    on the software batch.  Filters, wraps, environments and texgen modes beyond
+    these (mipmaps, TG_SPHEREMAP, ...) stay there too.
+    """
+    from vgxsim.state import codes as C
+    from vgxsim.state.textures import binding
+
+    b = binding(ident)
+    tex = b.texture
+    out = []
+    if tex.minfilter not in (C.TEXF_POINT, C.TEXF_BILINEAR) or tex.magfilter not in (
+            C.TEXF_POINT, C.TEXF_BILINEAR):
+        out.append("texture filter not point or bilinear")
+    elif tex.minfilter != tex.magfilter:
+        out.append("unequal minify and magnify texture filters")
+    elif tex.minfilter == C.TEXF_BILINEAR and not NATIVE_BILINEAR:
+        out.append("bilinear texture filter (8-bit weights in GL)")
+    if tex.wrap_s not in (C.TEXW_REPEAT, C.TEXW_CLAMP) or tex.wrap_t not in (
+            C.TEXW_REPEAT, C.TEXW_CLAMP):
+        out.append("texture wrap not repeat or clamp")
+    if b.env.mode not in (C.TEV_MODULATE, C.TEV_DECAL, C.TEV_BLEND):
+        out.append("texture environment not modulate, decal or blend")
+    elif b.env.mode == C.TEV_DECAL and tex.nc < 3:
+        out.append("TV_DECAL on a 1- or 2-component texture")
+    if any(getattr(b.texgen, f.name) != f.default for f in fields(b.texgen)
+           if f.name not in ("s_plane", "t_plane")):
+        out.append("texgen mode beyond TG_LINEAR")  # coordinates from a later model
     return out
 
 
@@ -138,6 +188,7 @@ class OpenGLBatch(CommandBatch):
         # The software batch on the same planes draws what OpenGL cannot express.
         self.software = CommandBatch(framebuffer)
         self._routes: dict = {}
+        self._untextured: dict = {}
 
     def _allocate(self) -> None:
         """No kernel arrays: the queue is a list of draw calls."""
@@ -180,11 +231,12 @@ class OpenGLBatch(CommandBatch):
         nt = tris.shape[0]
         if nt == 0:
             return 0
-        if self._cpu_route(rs) or tex is not None:
+        textured = bool(rs.texture) and tex is not None
+        if self._cpu_route(rs) or (bool(rs.texture) != textured):
             self.ntris += nt
             # Copies: the software batch sets up at the flush, and the caller may
             # reuse its arrays once this call returns.  ``tex``: (Nv, 3) s/w, t/w, 1/w
-            # of textured triangles (inexpressible() routes texturing here).
+            # of textured triangles whose texture state GL cannot express.
             self._queue((_CPU, rs, "add_triangles", (*_copies(xf, yf, zw, col, tris, src,
                                                               flat_col), rs,
                                                      *_copies(tex))), nt)
@@ -201,8 +253,15 @@ class OpenGLBatch(CommandBatch):
             colours = np.repeat(unorm8(per_tri), 3, axis=0)
         elif col is not None:
             colours = gouraud_colours(np.asarray(col, np.float64)[corners])
+        coords = None
+        if textured:
+            # (s/w, t/w, 0, 1/w): GL interpolates them linearly in window space and
+            # divides by q per fragment, the model's perspective correction.
+            t = np.asarray(tex, np.float64)[corners]
+            coords = np.zeros((3 * nt, 4), np.float32)
+            coords[:, 0], coords[:, 1], coords[:, 3] = t[:, 0], t[:, 1], t[:, 2]
         self.ntris += nt
-        self._queue((_TRIANGLES, rs, pos, colours), nt)
+        self._queue((_TRIANGLES, rs, pos, colours, coords), nt)
         return nt
 
     def add_fragments(self, xy, z, rgba, rs: RasterState) -> None:
@@ -217,6 +276,9 @@ class OpenGLBatch(CommandBatch):
         n = xy.shape[0]
         if n == 0:
             return
+        if rs.texture:  # only triangles are textured (docs/numeric_model.md section 14)
+            rs = self._untextured.get(rs) or self._untextured.setdefault(
+                rs, replace(rs, texture=0))
         if self._cpu_route(rs):
             self._queue((_CPU, rs, "add_fragments", (*_copies(xy, z, rgba), rs)), 1)
             return
@@ -228,7 +290,7 @@ class OpenGLBatch(CommandBatch):
         colours = (np.asarray(rgba, np.int64) & 0xFFFFFFFF).astype(np.uint32)
         self.nfrags += n
         self.nruns += 1
-        self._queue((_POINTS, rs, pos, colours), 1)
+        self._queue((_POINTS, rs, pos, colours, None), 1)
 
     def add_clear(self, planes: int, colour: int, z: int, stencil: int, rs: RasterState) -> None:
         """Queue a clear of the raster rectangle of ``rs`` through its write masks."""
@@ -280,7 +342,8 @@ class OpenGLBatch(CommandBatch):
             if kind == _CLEAR:
                 gl._clear(op[2], op[3], rs)
             else:
-                gl.draw(GL.GL_TRIANGLES if kind == _TRIANGLES else GL.GL_POINTS, op[2], op[3])
+                gl.draw(GL.GL_TRIANGLES if kind == _TRIANGLES else GL.GL_POINTS, op[2], op[3],
+                        op[4])
         if gl is not None:
             gl.end(front, back, True)
         self.software.flush()

@@ -150,6 +150,7 @@ class Surface(mesa.MesaPeer):
         GL.glBindFramebuffer(GL.GL_FRAMEBUFFER, self._fbo)
         self._state = None
         self._buffers = None
+        GL.glDisable(GL.GL_TEXTURE_2D)  # until a textured state enables it (apply)
         _tex, sub_image, _read = _raw()
         fb = self.fb
         w, h = self.width, self.height
@@ -238,7 +239,8 @@ class Surface(mesa.MesaPeer):
             GL.glDrawBuffers(len(att) or 1, np.array(att or [GL.GL_NONE], np.uint32))
             self._buffers = buffers
 
-    def draw(self, mode: int, pos: np.ndarray, col: np.ndarray | None) -> None:
+    def draw(self, mode: int, pos: np.ndarray, col: np.ndarray | None,
+             tex: np.ndarray | None = None) -> None:
         """Draw vertex arrays (client memory) with the current state.
 
         Parameters
@@ -247,6 +249,8 @@ class Surface(mesa.MesaPeer):
         pos : ndarray, shape (N, 3), float32
             GL window x, y and depth.
         col : ndarray, shape (N, 4), float32, or shape (N,), uint32 packed RGBA, or None
+        tex : ndarray, shape (N, 4), float32, optional
+            Texture coordinates (s/w, t/w, 0, 1/w) of textured triangles.
         """
         GL, _ = mesa._import_gl()
         GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
@@ -259,9 +263,13 @@ class Surface(mesa.MesaPeer):
                 GL.glColorPointer(4, GL.GL_FLOAT, 0, col)
         else:
             GL.glColor4f(0.0, 0.0, 0.0, 0.0)
+        if tex is not None:
+            GL.glEnableClientState(GL.GL_TEXTURE_COORD_ARRAY)
+            GL.glTexCoordPointer(4, GL.GL_FLOAT, 0, tex)
         GL.glDrawArrays(mode, 0, pos.shape[0])
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
         GL.glDisableClientState(GL.GL_COLOR_ARRAY)
+        GL.glDisableClientState(GL.GL_TEXTURE_COORD_ARRAY)
 
     def close(self) -> None:
         """Free the framebuffer object and destroy the context."""
