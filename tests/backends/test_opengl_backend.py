@@ -254,3 +254,53 @@ def test_fragments_under_a_texture_binding_are_not_textured(gl_win):
     ctx.flush()
     assert ctx.fb.front[1, 1] == ctx.fb.front[3, 2] == 0xFF336699
     assert (ctx.fb.front == 0xFF336699).sum() == 2
+
+
+def test_merged_draws_join_only_neighbours_of_one_state_and_layout():
+    from vgxsim.state.raster import RasterState
+
+    a, b = RasterState(), RasterState(zbuffer=True)
+    pos = [np.full((3, 3), k, np.float32) for k in range(5)]
+    flat = np.zeros(3, np.uint32)
+    smooth = np.zeros((3, 4), np.float32)
+    ops = [(gl_batch._TRIANGLES, a, pos[0], flat, None),
+           (gl_batch._TRIANGLES, RasterState(), pos[1], flat, None),  # equal to a
+           (gl_batch._TRIANGLES, a, pos[2], smooth, None),  # another colour layout
+           (gl_batch._TRIANGLES, b, pos[3], smooth, None),  # another state
+           (gl_batch._TRIANGLES, b, pos[4], smooth, None)]
+    out = gl_batch.merged_draws(ops)
+    assert [op[2][:, 0].tolist() for op in out] == [[0] * 3 + [1] * 3, [2] * 3,
+                                                     [3] * 3 + [4] * 3]
+    assert [op[1] for op in out] == [a, a, b] and out[0][3].shape == (6,)
+
+
+@pytest.mark.parametrize("mode", ["shadows", "volumes"])
+def test_merging_draws_gives_the_planes_of_separate_draws(monkeypatch, mode):
+    # The shadows program queues hundreds of draws per pass (one per polygon, many
+    # states); with MERGE_DRAWS off each is its own glDrawArrays.
+    from vgxsim.examples import heidmann1991 as h91
+
+    out = []
+    for merge in (True, False):
+        monkeypatch.setattr(gl_batch, "MERGE_DRAWS", merge)
+        stencils = []
+
+        def hook(_i, stencils=stencils):
+            from vgxsim.gl._core import current
+
+            ctx = current("test")
+            ctx.flush()
+            stencils.append(ctx.fb.stencil.copy())
+
+        backends.set_backend("opengl")
+        try:
+            image = h91.render(80, 64, mode=mode, stencil_hook=hook)
+        finally:
+            backends.set_backend(None)
+            session.reset()
+        out.append((image, stencils))
+    assert np.array_equal(out[0][0], out[1][0])
+    assert len(out[0][1]) == len(out[1][1])
+    for s0, s1 in zip(out[0][1], out[1][1], strict=True):
+        assert np.array_equal(s0, s1)
+    assert out[0][0][..., :3].any()

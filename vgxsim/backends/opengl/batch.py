@@ -35,6 +35,11 @@ EMULATE_INEXPRESSIBLE = True
 #: software batch, exactly (False).  Point-sampled textures are always GL's.
 NATIVE_BILINEAR = False
 
+#: Fast-path switch: consecutive draws of one raster state and one vertex layout go
+#: to GL as one glDrawArrays (GL draws an array's primitives in order, so the planes
+#: are those of the separate draws); False: one GL draw per queued call.
+MERGE_DRAWS = True
+
 
 def _partial(value: int, width: int) -> bool:
     return value not in (0, (1 << width) - 1)
@@ -162,6 +167,46 @@ def gouraud_colours(corner_rgba: np.ndarray) -> np.ndarray:
     q = np.clip(np.floor(tri * 255.0 + 0.5), 0, 255) / 255.0
     out = np.where(constant[:, None, None], q, tri)
     return out.reshape(-1, 4).astype(np.float32)
+
+
+def _layout(op: tuple) -> tuple:
+    col, coords = op[3], op[4]
+    return (op[0], None if col is None else col.dtype, coords is None)
+
+
+def merged_draws(ops: list[tuple]) -> list[tuple]:
+    """``ops`` with each run of consecutive triangle (or point) draws that share a
+    raster state and a vertex layout joined into one draw, order kept.
+
+    Parameters
+    ----------
+    ops : list of tuple
+        The batch's queue: ``(kind, state, ...)``; draws are ``(kind, state, pos,
+        colours, coords)`` with ``pos`` (N, 3) float32, ``colours`` (N,) uint32 or
+        (N, 4) float32 or None, ``coords`` (N, 4) float32 or None.
+
+    Returns
+    -------
+    list of tuple
+    """
+    runs: list[list[tuple]] = []
+    for op in ops:
+        last = runs[-1][-1] if runs else None
+        if (last is not None and op[0] in (_TRIANGLES, _POINTS) and last[0] == op[0]
+                and (op[1] is last[1] or op[1] == last[1]) and _layout(op) == _layout(last)):
+            runs[-1].append(op)
+        else:
+            runs.append([op])
+    out = []
+    for run in runs:
+        if len(run) == 1:
+            out.append(run[0])
+            continue
+        kind, rs = run[0][0], run[0][1]
+        joined = [None if run[0][k] is None else np.concatenate([op[k] for op in run])
+                  for k in (2, 3, 4)]
+        out.append((kind, rs, *joined))
+    return out
 
 
 def _copies(*arrays):
@@ -321,7 +366,7 @@ class OpenGLBatch(CommandBatch):
         gl = None
         front = back = False
         single = self.fb.back is None
-        for op in self._ops:
+        for op in merged_draws(self._ops) if MERGE_DRAWS else self._ops:
             kind, rs = op[0], op[1]
             if kind == _CPU:
                 if gl is not None:

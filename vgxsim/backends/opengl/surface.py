@@ -65,6 +65,14 @@ def _raw():
     return glTexImage2D, glTexSubImage2D, glReadPixels
 
 
+def _raw_arrays():
+    """PyOpenGL's unwrapped vertex-array pointer calls (vertex, colour, texture
+    coordinate)."""
+    from OpenGL.raw.GL.VERSION.GL_1_1 import glColorPointer, glTexCoordPointer, glVertexPointer
+
+    return glVertexPointer, glColorPointer, glTexCoordPointer
+
+
 def _ptr(a: np.ndarray):
     return a.ctypes.data_as(ctypes.c_void_p)
 
@@ -253,19 +261,28 @@ class Surface(mesa.MesaPeer):
             Texture coordinates (s/w, t/w, 0, 1/w) of textured triangles.
         """
         GL, _ = mesa._import_gl()
+        vertex_ptr, colour_ptr, coord_ptr = _raw_arrays()
+        # The raw calls take pointers: PyOpenGL's wrappers would also store a reference
+        # to every array in the context's data (a third of an OpenGL frame in
+        # profiles); the arrays are alive until glDrawArrays returns, which is all
+        # client arrays need.
+        pos = np.ascontiguousarray(pos, np.float32)
         GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
-        GL.glVertexPointer(3, GL.GL_FLOAT, 0, pos)
+        vertex_ptr(3, GL.GL_FLOAT, 0, _ptr(pos))
         if col is not None:
             GL.glEnableClientState(GL.GL_COLOR_ARRAY)
+            col = np.ascontiguousarray(col)
             if col.dtype == np.uint32:
-                GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE, 0, col.view(np.uint8).reshape(-1, 4))
+                colour_ptr(4, GL.GL_UNSIGNED_BYTE, 0, _ptr(col))
             else:
-                GL.glColorPointer(4, GL.GL_FLOAT, 0, col)
+                col = col.astype(np.float32, copy=False)
+                colour_ptr(4, GL.GL_FLOAT, 0, _ptr(col))
         else:
             GL.glColor4f(0.0, 0.0, 0.0, 0.0)
         if tex is not None:
+            tex = np.ascontiguousarray(tex, np.float32)
             GL.glEnableClientState(GL.GL_TEXTURE_COORD_ARRAY)
-            GL.glTexCoordPointer(4, GL.GL_FLOAT, 0, tex)
+            coord_ptr(4, GL.GL_FLOAT, 0, _ptr(tex))
         GL.glDrawArrays(mode, 0, pos.shape[0])
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
         GL.glDisableClientState(GL.GL_COLOR_ARRAY)
