@@ -9,7 +9,10 @@ flush, draws them with OpenGL: triangles as ``GL_TRIANGLES`` (GL interpolates co
 linearly in window space under the identity ortho, which is IRIS's screen-linear
 Gouraud rule, shademodel(3G)), fragments as one-pixel ``GL_POINTS`` on their pixel
 centres, clears as ``glClear`` inside the scissor box.  The fragment stage -- z,
-stencil, alpha test, blending, logic ops, write masks -- is OpenGL's.
+stencil, alpha test, blending, logic ops, write masks -- is OpenGL's, and so is
+point-sampled texturing (:func:`texture_inexpressible`).  What OpenGL 1.x cannot
+draw as the numeric model does (:func:`inexpressible`) is drawn by the software
+batch on the same planes, in order (docs/opengl_backend.md).
 """
 
 from __future__ import annotations
