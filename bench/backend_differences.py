@@ -8,7 +8,8 @@ on the software and the OpenGL backend and prints, per workload, how many pixels
 the list: Gouraud colour, blending rounding, z interpolation, the alpha test, the
 shadows scene under subpixel(FALSE) and subpixel(TRUE), and the shipped scenes
 through the shadows program (``--scenes`` for those alone, at ``--size``; the
-textured floor also with bilinear texturing drawn by GL, D6).
+textured floor also with 8-bit texels and with bilinear textures left to the
+software batch, D6).
 """
 
 from __future__ import annotations
@@ -130,28 +131,41 @@ def shadows(subpixel: bool, size=(640, 512)):
 SCENES = ("cubes", "balls", "textured_floor", "dense", "teapot")
 
 
-def shipped_scene(name: str, subpixel: bool, size=(160, 128), native_bilinear=False) -> None:
+TEXTURE_VARIANTS = {
+    None: {},
+    "8-bit texels": {"float_texels": False},  # GL's usual formats: llvmpipe's 8-bit filter
+    "NATIVE_BILINEAR off": {"native_bilinear": False},  # the software batch draws it
+}
+
+
+def shipped_scene(name: str, subpixel: bool, size=(160, 128), variant=None) -> None:
     """One shipped scene through the shadows program (vgxsim.shadow.api.render) on
-    both backends: stencil-mask pixels differing per light, colour differences."""
+    both backends: stencil-mask pixels differing per light, colour differences.
+    ``variant``: a key of :data:`TEXTURE_VARIANTS` (how the OpenGL backend draws
+    bilinear textures)."""
     from vgxsim.backends.opengl import batch as gl_batch
+    from vgxsim.backends.opengl import surface as gl_surface
     from vgxsim.shadow import api
 
+    opts = TEXTURE_VARIANTS[variant]
     scene = api.load_scene(name)
     frames = {}
     for backend in backends.BACKENDS:
         backends.set_backend(backend)
-        gl_batch.NATIVE_BILINEAR = native_bilinear and backend == "opengl"
+        gl_batch.NATIVE_BILINEAR = opts.get("native_bilinear", True)
+        gl_surface.Surface.float_texels = opts.get("float_texels", True)
         try:
             frames[backend] = api.render(scene, size=size, subpixel=subpixel)
         finally:
-            gl_batch.NATIVE_BILINEAR = False
+            gl_batch.NATIVE_BILINEAR = True
+            gl_surface.Surface.float_texels = True
             backends.set_backend(None)
             session.reset()
     a, b = frames["software"], frames["opengl"]
     masks = [int((x != y).sum()) for x, y in zip(a.lit, b.lit, strict=True)]
     cd = np.abs(a.colour.astype(int) - b.colour.astype(int)).max(axis=2)
-    label = f"{name}{' (NATIVE_BILINEAR)' if native_bilinear else ''}"
-    print(f"{label:30s} {size[0]}x{size[1]} subpixel({'TRUE' if subpixel else 'FALSE'}): "
+    label = name if variant is None else f"{name} ({variant})"
+    print(f"{label:36s} {size[0]}x{size[1]} subpixel({'TRUE' if subpixel else 'FALSE'}): "
           f"stencil mask pixels differing per light {masks} of {size[0] * size[1]}, "
           f"colour pixels {int((cd > 0).sum())} (> 1 level: {int((cd > 1).sum())}), "
           f"max {int(cd.max())}")
@@ -169,7 +183,9 @@ def main(argv=None) -> int:
         for sub in (True, False):
             for name in SCENES:
                 shipped_scene(name, sub, size)
-            shipped_scene("textured_floor", sub, size, native_bilinear=True)
+            for variant in TEXTURE_VARIANTS:
+                if variant is not None:
+                    shipped_scene("textured_floor", sub, size, variant)
         return 0
     for name, make, what in (("Gouraud, 2000 random triangles", gouraud, "colour"),
                              ("z-buffered, 2000 random sloped", zbuffered, "z"),

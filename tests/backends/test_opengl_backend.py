@@ -235,10 +235,10 @@ def test_texture_states_gl_draws_and_those_it_leaves_to_software(monkeypatch):
     assert gl_batch.texture_inexpressible(_binding(3, 7, 7)) == [
         "texture filter not point or bilinear"]  # e.g. a mipmap filter
     both = _binding(3, bilinear, bilinear)
-    assert gl_batch.texture_inexpressible(both) == [
-        "bilinear texture filter (8-bit weights in GL)"]
-    monkeypatch.setattr(gl_batch, "NATIVE_BILINEAR", True)
     assert gl_batch.texture_inexpressible(both) == []
+    monkeypatch.setattr(gl_batch, "NATIVE_BILINEAR", False)
+    assert gl_batch.texture_inexpressible(both) == [
+        "bilinear texture filter (NATIVE_BILINEAR off)"]
 
 
 def test_fragments_under_a_texture_binding_are_not_textured(gl_win):

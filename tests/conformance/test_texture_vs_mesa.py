@@ -13,11 +13,13 @@ llvmpipe, all 32 cases): point sampling identical on every pixel; bilinear withi
 1 level on >= 99.9% of pixels and within 2 on all.  The thresholds: point exact on
 >= 99.5%, bilinear within 1 on >= 99% and within 2 everywhere.
 
-The same cases run on vgxsim's OpenGL backend (``[opengl_backend]``): it draws
-point-sampled textures with GL and must match the software batch on every pixel;
-bilinear ones it leaves to the software batch (exact) unless
-``NATIVE_BILINEAR`` is on, when Mesa's tolerances apply (allowed difference D6 of
-docs/opengl_backend.md).
+The same cases run on vgxsim's OpenGL backend (``[opengl_backend]``), which draws
+textures with GL too but stores the texels as floats, so llvmpipe filters in
+float32: point sampling must match the software batch on every pixel, bilinear
+within one level on all and exactly on >= 99.9% (allowed difference D6 of
+docs/opengl_backend.md; measured: 2 pixels of the 16 bilinear cases' 30 720 one
+level off).  With ``NATIVE_BILINEAR`` off the software batch draws bilinear
+textures, exactly.
 """
 
 from __future__ import annotations
@@ -108,7 +110,8 @@ def test_textured_quad_matches_mesa(peer, nc, fil, wrap, env):
     want = _channels(peer.color())
     diff = np.abs(got - want).max(axis=-1)
     if isinstance(peer, BackendPeer):
-        assert (diff == 0).all(), np.bincount(diff.ravel())
+        assert diff.max() <= (0 if fil == C.TEXF_POINT else 1), np.bincount(diff.ravel())
+        assert (diff == 0).mean() >= 0.999, np.bincount(diff.ravel())
     elif fil == C.TEXF_POINT:
         assert (diff == 0).mean() >= 0.995, np.bincount(diff.ravel())
     else:
@@ -120,24 +123,19 @@ def test_textured_quad_matches_mesa(peer, nc, fil, wrap, env):
 
 
 @pytest.mark.parametrize("nc,fil,wrap,env", [c for c in CASES if c[1] == C.TEXF_BILINEAR])
-def test_native_bilinear_on_the_opengl_backend_within_two_levels(monkeypatch, nc, fil, wrap,
-                                                                  env):
-    # The switch that draws bilinear textures with GL: llvmpipe's 8-bit weights
-    # round differently from the model's float64 ones (D6), by up to two levels;
-    # that the default path is exact is the [opengl_backend] case above.
+def test_bilinear_left_to_the_software_batch_is_exact(monkeypatch, nc, fil, wrap, env):
+    # The switch off: the OpenGL backend hands bilinear textures to the software
+    # batch, between its GL runs; the planes are then the software batch's.
     from vgxsim.backends.opengl import batch as gl_batch
 
-    monkeypatch.setattr(gl_batch, "NATIVE_BILINEAR", True)
+    monkeypatch.setattr(gl_batch, "NATIVE_BILINEAR", False)
     rng = np.random.default_rng(nc * 100 + fil * 10 + wrap * 3 + env)
     rs = _state(nc, fil, wrap, env, rng)
     tris = _quad(rng)
-    got = _channels(_vgxsim(tris, rs))
+    got = _vgxsim(tris, rs)
     p = BackendPeer(W, H)
     try:
         p.render([("triangle", verts, rs) for verts in tris])
-        want = _channels(p.color())
+        assert np.array_equal(p.color(), got)
     finally:
         p.close()
-    diff = np.abs(got - want).max(axis=-1)
-    assert diff.max() <= 2 and (diff <= 1).mean() >= 0.99, np.bincount(diff.ravel())
-    assert diff.max() >= 1  # GL really drew it: the rounding shows somewhere

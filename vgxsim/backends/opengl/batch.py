@@ -36,7 +36,7 @@ EMULATE_INEXPRESSIBLE = True
 
 #: Bilinear texturing drawn by GL (True; within allowed difference D6) or by the
 #: software batch, exactly (False).  Point-sampled textures are always GL's.
-NATIVE_BILINEAR = False
+NATIVE_BILINEAR = True
 
 #: Fast-path switch: consecutive draws of one raster state and one vertex layout go
 #: to GL as one glDrawArrays (GL draws an array's primitives in order, so the planes
@@ -94,13 +94,16 @@ def texture_inexpressible(ident: int) -> list[str]:
     wraps; GL_MODULATE/GL_DECAL/GL_BLEND its environments (DECAL on 3 and 4
     components: GL leaves it undefined below).  Texture coordinates arrive as the
     pipeline computed them (texgen, t2*, clipping), as (s/w, t/w, 0, 1/w), and GL's
-    per-fragment division by q is the model's perspective correction.  Not exact:
-    llvmpipe's bilinear weights have 8 bits (the model's are float64) -- allowed
-    difference D6 when :data:`NATIVE_BILINEAR` is on; and GL chooses between
-    minifying and magnifying from differences over a 2 x 2 pixel quad, not from
-    the exact derivatives of u and v, so unequal TX_MINFILTER and TX_MAGFILTER stay
-    on the software batch.  Filters, wraps, environments and texgen modes beyond
-    these (mipmaps, TG_SPHEREMAP, ...) stay there too.
+    per-fragment division by q is the model's perspective correction.  Texels are
+    stored as floats (:attr:`Surface.float_texels`), so filtering and environment
+    run in float32 against the model's float64.  Not exact -- allowed difference D6:
+    the environment takes GL's interpolated colour unrounded where the model rounds
+    it to 0..255 first, and float32 bilinear sums round differently now and then;
+    :data:`NATIVE_BILINEAR` off leaves bilinear textures to the software batch.
+    GL chooses between minifying and magnifying from differences over a 2 x 2 pixel
+    quad, not from the exact derivatives of u and v, so unequal TX_MINFILTER and
+    TX_MAGFILTER stay on the software batch; so do filters, wraps, environments and
+    texgen modes beyond these (mipmaps, TG_SPHEREMAP, ...).
     """
     from vgxsim.state import codes as C
     from vgxsim.state.textures import binding
@@ -114,7 +117,7 @@ def texture_inexpressible(ident: int) -> list[str]:
     elif tex.minfilter != tex.magfilter:
         out.append("unequal minify and magnify texture filters")
     elif tex.minfilter == C.TEXF_BILINEAR and not NATIVE_BILINEAR:
-        out.append("bilinear texture filter (8-bit weights in GL)")
+        out.append("bilinear texture filter (NATIVE_BILINEAR off)")
     if tex.wrap_s not in (C.TEXW_REPEAT, C.TEXW_CLAMP) or tex.wrap_t not in (
             C.TEXW_REPEAT, C.TEXW_CLAMP):
         out.append("texture wrap not repeat or clamp")

@@ -95,6 +95,11 @@ class Surface(mesa.MesaPeer):
         off, as the software batch does).
     """
 
+    #: Texels as 32-bit floats: llvmpipe then filters and applies the texture
+    #: environment in float32, not in its 8-bit fixed point (docs/opengl_backend.md,
+    #: D6: within one level of the model, where 8-bit texels give two).
+    float_texels = True
+
     def __init__(self, framebuffer: Framebuffer):
         if not available():
             from vgxsim.backends import BackendError
