@@ -10,7 +10,7 @@ linearly in window space under the identity ortho, which is IRIS's screen-linear
 Gouraud rule, shademodel(3G)), fragments as one-pixel ``GL_POINTS`` on their pixel
 centres, clears as ``glClear`` inside the scissor box.  The fragment stage -- z,
 stencil, alpha test, blending, logic ops, write masks -- is OpenGL's, and so is
-point-sampled texturing (:func:`texture_inexpressible`).  What OpenGL 1.x cannot
+point and bilinear texturing (:func:`texture_inexpressible`).  What OpenGL 1.x cannot
 draw as the numeric model does (:func:`inexpressible`) is drawn by the software
 batch on the same planes, in order (docs/opengl_backend.md).
 """
@@ -90,8 +90,9 @@ def texture_inexpressible(ident: int) -> list[str]:
     """What of texture binding ``ident`` GL 1.x texturing cannot draw as the
     numeric model (docs/numeric_model.md section 14) does (empty: drawn by GL).
 
-    GL_NEAREST and GL_REPEAT/GL_CLAMP_TO_EDGE are the model's point filter and
-    wraps; GL_MODULATE/GL_DECAL/GL_BLEND its environments (DECAL on 3 and 4
+    GL_NEAREST/GL_LINEAR and GL_REPEAT/GL_CLAMP_TO_EDGE are the model's point and
+    bilinear filters (texel centres at half-integers in both) and its wraps;
+    GL_MODULATE/GL_DECAL/GL_BLEND its environments (DECAL on 3 and 4
     components: GL leaves it undefined below).  Texture coordinates arrive as the
     pipeline computed them (texgen, t2*, clipping), as (s/w, t/w, 0, 1/w), and GL's
     per-fragment division by q is the model's perspective correction.  Texels are
