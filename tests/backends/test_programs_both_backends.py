@@ -4,8 +4,11 @@ A smoke test with teeth: each program of vgxsim/examples, tests/cli/programs and
 tests/backends/programs runs through ``vgxsim compare`` (the same events on the
 software and the OpenGL backend); both runs must end with the same status and
 show the same number of frames, at least one, and the frames must agree up to the
-allowed differences of docs/opengl_backend.md (colour within one level on all but
-a few pixels, the D1/D3/D4 pixels; z is left to the compare tool's own tests).
+allowed differences of docs/opengl_backend.md: colour within one level and stencil
+equal on all but 0.4 % of the pixels (the D1, D3 and D4 pixels of the subpixel(FALSE)
+shadows programs; measured at 80 x 64, at most 8 of 5 120 pixels, heidmann1991
+volumes, and 2 stencil pixels; every other program 0).  z is left to the compare
+tool's own tests.
 Each shipped scene is drawn in every display mode of the shadows program.
 """
 
@@ -79,7 +82,7 @@ def test_program_runs_alike_on_both_backends(tmp_path, name, capsys):
     program, args, events, max_frames, status = _programs(tmp_path)[name]
     lines: list[str] = []
     got = compare_program(program, args, events=events, size=SMALL, max_frames=max_frames,
-                          levels=1, z_units=1 << 24, tolerance=0.002, out=lines.append)
+                          levels=1, z_units=1 << 24, tolerance=0.004, out=lines.append)
     report = "\n".join(lines)
     rows = [line.split() for line in lines if line[:5].strip().isdigit()]
     assert "differs" not in report, report  # exit status and frame count
