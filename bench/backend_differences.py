@@ -1,12 +1,15 @@
 """Measure the allowed differences of the OpenGL backend (docs/opengl_backend.md).
 
-    python bench/backend_differences.py [--seed N]
+    python bench/backend_differences.py [--seed N] [--scenes [--size WxH]]
 
 Draws randomised workloads through the library API (:class:`Context.draw_arrays`)
 on the software and the OpenGL backend and prints, per workload, how many pixels
 (or channel values) differ and by how much.  Each workload isolates one entry of
-the list: Gouraud colour, blending rounding, z interpolation, the alpha test, and
-the shadows scene under subpixel(FALSE) and subpixel(TRUE).
+the list: Gouraud colour, blending rounding, z interpolation, the alpha test, the
+shadows scene under subpixel(FALSE) and subpixel(TRUE), and the shipped scenes
+through the shadows program (``--scenes`` for those alone, at ``--size``; the
+textured floor also with 8-bit texels and with bilinear textures left to the
+software batch, D6).
 """
 
 from __future__ import annotations
@@ -125,10 +128,65 @@ def shadows(subpixel: bool, size=(640, 512)):
           f"colour pixels {int((cd > 0).sum())} (> 1 level: {int((cd > 1).sum())})")
 
 
+SCENES = ("cubes", "balls", "textured_floor", "dense", "teapot")
+
+
+TEXTURE_VARIANTS = {
+    None: {},
+    "8-bit texels": {"float_texels": False},  # GL's usual formats: llvmpipe's 8-bit filter
+    "NATIVE_BILINEAR off": {"native_bilinear": False},  # the software batch draws it
+}
+
+
+def shipped_scene(name: str, subpixel: bool, size=(160, 128), variant=None) -> None:
+    """One shipped scene through the shadows program (vgxsim.shadow.api.render) on
+    both backends: stencil-mask pixels differing per light, colour differences.
+    ``variant``: a key of :data:`TEXTURE_VARIANTS` (how the OpenGL backend draws
+    bilinear textures)."""
+    from vgxsim.backends.opengl import batch as gl_batch
+    from vgxsim.backends.opengl import surface as gl_surface
+    from vgxsim.shadow import api
+
+    opts = TEXTURE_VARIANTS[variant]
+    scene = api.load_scene(name)
+    frames = {}
+    for backend in backends.BACKENDS:
+        backends.set_backend(backend)
+        gl_batch.NATIVE_BILINEAR = opts.get("native_bilinear", True)
+        gl_surface.Surface.float_texels = opts.get("float_texels", True)
+        try:
+            frames[backend] = api.render(scene, size=size, subpixel=subpixel)
+        finally:
+            gl_batch.NATIVE_BILINEAR = True
+            gl_surface.Surface.float_texels = True
+            backends.set_backend(None)
+            session.reset()
+    a, b = frames["software"], frames["opengl"]
+    masks = [int((x != y).sum()) for x, y in zip(a.lit, b.lit, strict=True)]
+    cd = np.abs(a.colour.astype(int) - b.colour.astype(int)).max(axis=2)
+    label = name if variant is None else f"{name} ({variant})"
+    print(f"{label:36s} {size[0]}x{size[1]} subpixel({'TRUE' if subpixel else 'FALSE'}): "
+          f"stencil mask pixels differing per light {masks} of {size[0] * size[1]}, "
+          f"colour pixels {int((cd > 0).sum())} (> 1 level: {int((cd > 1).sum())}), "
+          f"max {int(cd.max())}")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--scenes", action="store_true",
+                    help="only the shipped scenes, at --size")
+    ap.add_argument("--size", default="160x128", help="window of the shipped scenes")
     ns = ap.parse_args(argv)
+    size = tuple(int(v) for v in ns.size.lower().split("x"))
+    if ns.scenes:
+        for sub in (True, False):
+            for name in SCENES:
+                shipped_scene(name, sub, size)
+            for variant in TEXTURE_VARIANTS:
+                if variant is not None:
+                    shipped_scene("textured_floor", sub, size, variant)
+        return 0
     for name, make, what in (("Gouraud, 2000 random triangles", gouraud, "colour"),
                              ("z-buffered, 2000 random sloped", zbuffered, "z"),
                              ("alpha test AF_GREATER 128, Gouraud", alpha_test, "colour")):
@@ -142,6 +200,9 @@ def main(argv=None) -> int:
         _report(f"blend {label}, 400 flat triangles", a, b)
     for sub in (True, False):
         shadows(sub)
+    for sub in (True, False):
+        for name in SCENES:
+            shipped_scene(name, sub)
     return 0
 
 

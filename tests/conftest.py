@@ -23,8 +23,8 @@ import vgxsim.backends as backends
 #: (tests/kernels and tests/reference drive the software batch itself;
 #: tests/shadow caches its renders per module, whatever the backend, so
 #: tests/backends compares the shadows program's planes across backends instead;
-#: tests/conformance compares the software pipeline with Mesa, which on the
-#: OpenGL backend would compare Mesa with itself.)
+#: tests/conformance compares the software batch with its peers, Mesa and the
+#: OpenGL backend's batch, through its own parametrization, conformance_peers.py.)
 BOTH_BACKENDS = ("tests/gl/", "tests/lighting/", "tests/stream/")
 
 #: Tests whose exact software expectation OpenGL misses, with the entry of

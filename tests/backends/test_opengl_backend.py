@@ -211,3 +211,96 @@ def test_upload_switch_keeps_planes_equal_to_software(gl_win, monkeypatch, chang
                 assert np.abs(a.astype(np.int64) - b).max() <= 1
             else:
                 assert np.array_equal(a, b)
+
+
+def _binding(nc=3, minf=0, magf=0, env=0):
+    from vgxsim.state import codes as C
+    from vgxsim.state.textures import TexEnv, TexGen, Texture, binding_id
+
+    texels = np.zeros((2, 2, 4), np.uint8)
+    tex = Texture(texels, nc, minf, magf, C.TEXW_REPEAT, C.TEXW_CLAMP)
+    return binding_id(tex, TexEnv(env), TexGen())
+
+
+def test_texture_states_gl_draws_and_those_it_leaves_to_software(monkeypatch):
+    from vgxsim.state import codes as C
+
+    point, bilinear = C.TEXF_POINT, C.TEXF_BILINEAR
+    assert gl_batch.texture_inexpressible(_binding()) == []
+    assert gl_batch.texture_inexpressible(_binding(4, point, point, C.TEV_BLEND)) == []
+    assert gl_batch.texture_inexpressible(_binding(1, point, bilinear)) == [
+        "unequal minify and magnify texture filters"]
+    assert gl_batch.texture_inexpressible(_binding(1, point, point, C.TEV_DECAL)) == [
+        "TV_DECAL on a 1- or 2-component texture"]
+    assert gl_batch.texture_inexpressible(_binding(3, 7, 7)) == [
+        "texture filter not point or bilinear"]  # e.g. a mipmap filter
+    both = _binding(3, bilinear, bilinear)
+    assert gl_batch.texture_inexpressible(both) == []
+    monkeypatch.setattr(gl_batch, "NATIVE_BILINEAR", False)
+    assert gl_batch.texture_inexpressible(both) == [
+        "bilinear texture filter (NATIVE_BILINEAR off)"]
+
+
+def test_fragments_under_a_texture_binding_are_not_textured(gl_win):
+    # numeric_model section 14: only triangles are textured.  The texture's texels
+    # are all zero, so a textured (modulated) fragment would come out black.
+    from vgxsim.state.raster import RasterState
+
+    ctx = gl_win(W, H)
+    rs = RasterState(scissor=(0, W - 1, 0, H - 1), texture=_binding())
+    xy = np.array([[1, 1], [2, 3]], np.int64)
+    ctx.raw_batch.add_fragments(xy, np.zeros(2, np.int64),
+                                np.full(2, 0xFF336699, np.int64), rs)
+    ctx.flush()
+    assert ctx.fb.front[1, 1] == ctx.fb.front[3, 2] == 0xFF336699
+    assert (ctx.fb.front == 0xFF336699).sum() == 2
+
+
+def test_merged_draws_join_only_neighbours_of_one_state_and_layout():
+    from vgxsim.state.raster import RasterState
+
+    a, b = RasterState(), RasterState(zbuffer=True)
+    pos = [np.full((3, 3), k, np.float32) for k in range(5)]
+    flat = np.zeros(3, np.uint32)
+    smooth = np.zeros((3, 4), np.float32)
+    ops = [(gl_batch._TRIANGLES, a, pos[0], flat, None),
+           (gl_batch._TRIANGLES, RasterState(), pos[1], flat, None),  # equal to a
+           (gl_batch._TRIANGLES, a, pos[2], smooth, None),  # another colour layout
+           (gl_batch._TRIANGLES, b, pos[3], smooth, None),  # another state
+           (gl_batch._TRIANGLES, b, pos[4], smooth, None)]
+    out = gl_batch.merged_draws(ops)
+    assert [op[2][:, 0].tolist() for op in out] == [[0] * 3 + [1] * 3, [2] * 3,
+                                                     [3] * 3 + [4] * 3]
+    assert [op[1] for op in out] == [a, a, b] and out[0][3].shape == (6,)
+
+
+@pytest.mark.parametrize("mode", ["shadows", "volumes"])
+def test_merging_draws_gives_the_planes_of_separate_draws(monkeypatch, mode):
+    # The shadows program queues hundreds of draws per pass (one per polygon, many
+    # states); with MERGE_DRAWS off each is its own glDrawArrays.
+    from vgxsim.examples import heidmann1991 as h91
+
+    out = []
+    for merge in (True, False):
+        monkeypatch.setattr(gl_batch, "MERGE_DRAWS", merge)
+        stencils = []
+
+        def hook(_i, stencils=stencils):
+            from vgxsim.gl._core import current
+
+            ctx = current("test")
+            ctx.flush()
+            stencils.append(ctx.fb.stencil.copy())
+
+        backends.set_backend("opengl")
+        try:
+            image = h91.render(80, 64, mode=mode, stencil_hook=hook)
+        finally:
+            backends.set_backend(None)
+            session.reset()
+        out.append((image, stencils))
+    assert np.array_equal(out[0][0], out[1][0])
+    assert len(out[0][1]) == len(out[1][1])
+    for s0, s1 in zip(out[0][1], out[1][1], strict=True):
+        assert np.array_equal(s0, s1)
+    assert out[0][0][..., :3].any()

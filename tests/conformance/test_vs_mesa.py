@@ -49,12 +49,20 @@ and the Heidmann 1991 frame itself, recorded with
 :func:`vgxsim.reference.recorder.record_window_triangles` and replayed on Mesa.
 Both leave out only the pixels where a depth comparison is within llvmpipe's z
 rounding (found with vgxsim's own z) and require those to be few.
+
+Every comparison with a peer runs twice (``[mesa]``, ``[opengl_backend]``): against
+Mesa driven directly, and against vgxsim's OpenGL backend fed the same commands
+through its batch (tests/conformance/conformance_peers.py), which must match the
+software batch under the same tolerances.  The recorded 1991 frame is replayed on
+Mesa only: the shadows program on the OpenGL backend is
+tests/backends/test_shadows_backends.py.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
+from conformance_peers import PEERS, open_peer
 
 from vgxsim.batch import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z, CommandBatch
 from vgxsim.reference import mesa
@@ -141,9 +149,9 @@ def channel_diff(a, b):
     return np.abs(ca - cb).max(axis=-1)
 
 
-@pytest.fixture(scope="module")
-def peer():
-    p = mesa.MesaPeer(W, H)
+@pytest.fixture(scope="module", params=PEERS)
+def peer(request):
+    p = open_peer(request.param, W, H)
     yield p
     p.close()
 
@@ -580,7 +588,8 @@ def window_triangles(corners, faces, w, h, colour):
     return out
 
 
-def test_heidmann_shadow_volume_stencil_matches_mesa():
+@pytest.mark.parametrize("peer_kind", PEERS)
+def test_heidmann_shadow_volume_stencil_matches_mesa(peer_kind):
     w, h = 96, 80
     full = (0, w - 1, 0, h - 1)
     grey = (0.5, 0.5, 0.5, 1.0)
@@ -613,7 +622,7 @@ def test_heidmann_shadow_volume_stencil_matches_mesa():
             vol_tris.append(verts)
             cmds.append(("triangle", verts, rs))
     ours = render_vgxsim(cmds, w, h)
-    p = mesa.MesaPeer(w, h)
+    p = open_peer(peer_kind, w, h)
     try:
         gl = render_mesa(p, cmds)
     finally:

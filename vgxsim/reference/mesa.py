@@ -424,6 +424,10 @@ class MesaPeer:
     '0xff0000ff'
     """
 
+    #: Texels as 32-bit floats (vgxsim.reference.mesa_texture.apply_texture); the
+    #: peer keeps GL's 8-bit formats.
+    float_texels = False
+
     def __init__(self, width: int, height: int, stencil_bits: int = 8, depth_bits: int = 24,
                  guard: int = 2048):
         global _context_created, _last_peer
@@ -605,7 +609,8 @@ class MesaPeer:
         if state.texture or (self._state is not None and self._state.texture):
             from .mesa_texture import apply_texture
 
-            apply_texture(GL, state, self.__dict__.setdefault("_textures", {}))
+            apply_texture(GL, state, self.__dict__.setdefault("_textures", {}),
+                          float_texels=self.float_texels)
         self._state = state
 
     # -- rendering -------------------------------------------------------

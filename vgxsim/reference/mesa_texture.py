@@ -22,9 +22,17 @@ import numpy as np
 from vgxsim.state import codes as C
 from vgxsim.state.textures import binding
 
+#: Float internal formats (ARB_texture_float) of GL_LUMINANCE .. GL_RGBA.
+_FLOAT_FORMATS = {0x1909: 0x8818, 0x190A: 0x8819, 0x1907: 0x8815, 0x1908: 0x8814}
 
-def apply_texture(GL, state, cache: dict) -> None:
-    """Make the GL texture state that of ``state.texture`` (0: texturing off)."""
+
+def apply_texture(GL, state, cache: dict, float_texels: bool = False) -> None:
+    """Make the GL texture state that of ``state.texture`` (0: texturing off).
+
+    ``float_texels``: store the texels as 32-bit floats (exactly k / 255), so that
+    llvmpipe filters and applies the environment in float32 instead of its 8-bit
+    fixed point (the OpenGL backend's choice, docs/opengl_backend.md); the peer
+    keeps GL's 8-bit formats, as an OpenGL program would use them."""
     if state.texture == 0:
         GL.glDisable(GL.GL_TEXTURE_2D)
         return
@@ -40,7 +48,8 @@ def apply_texture(GL, state, cache: dict) -> None:
         comps = {1: [0], 2: [0, 3], 3: [0, 1, 2], 4: [0, 1, 2, 3]}[tex.nc]
         data = np.ascontiguousarray(tex.texels[..., comps], np.uint8)
         h, w = data.shape[:2]
-        GL.glTexImage2D(GL.GL_TEXTURE_2D, 0, fmt, w, h, 0, fmt, GL.GL_UNSIGNED_BYTE, data)
+        internal = _FLOAT_FORMATS[int(fmt)] if float_texels else fmt
+        GL.glTexImage2D(GL.GL_TEXTURE_2D, 0, internal, w, h, 0, fmt, GL.GL_UNSIGNED_BYTE, data)
     GL.glBindTexture(GL.GL_TEXTURE_2D, name)
     filt = {C.TEXF_POINT: GL.GL_NEAREST, C.TEXF_BILINEAR: GL.GL_LINEAR}
     wrap = {C.TEXW_REPEAT: GL.GL_REPEAT, C.TEXW_CLAMP: GL.GL_CLAMP_TO_EDGE}

@@ -9,10 +9,15 @@ flush, draws them with OpenGL: triangles as ``GL_TRIANGLES`` (GL interpolates co
 linearly in window space under the identity ortho, which is IRIS's screen-linear
 Gouraud rule, shademodel(3G)), fragments as one-pixel ``GL_POINTS`` on their pixel
 centres, clears as ``glClear`` inside the scissor box.  The fragment stage -- z,
-stencil, alpha test, blending, logic ops, write masks -- is OpenGL's.
+stencil, alpha test, blending, logic ops, write masks -- is OpenGL's, and so is
+point and bilinear texturing (:func:`texture_inexpressible`).  What OpenGL 1.x cannot
+draw as the numeric model does (:func:`inexpressible`) is drawn by the software
+batch on the same planes, in order (docs/opengl_backend.md).
 """
 
 from __future__ import annotations
+
+from dataclasses import fields, replace
 
 import numpy as np
 
@@ -28,6 +33,15 @@ _TRIANGLES, _POINTS, _CLEAR, _CPU = range(4)
 #: Test switch: with False, states OpenGL cannot express are drawn by OpenGL anyway
 #: (approximately) instead of by the software batch.
 EMULATE_INEXPRESSIBLE = True
+
+#: Bilinear texturing drawn by GL (True; within allowed difference D6) or by the
+#: software batch, exactly (False).  Point-sampled textures are always GL's.
+NATIVE_BILINEAR = True
+
+#: Fast-path switch: consecutive draws of one raster state and one vertex layout go
+#: to GL as one glDrawArrays (GL draws an array's primitives in order, so the planes
+#: are those of the separate draws); False: one GL draw per queued call.
+MERGE_DRAWS = True
 
 
 def _partial(value: int, width: int) -> bool:
@@ -64,9 +78,57 @@ def inexpressible(rs: RasterState, stencil_planes: int, clear: bool = False) -> 
         # IRIS clamps ST_INCR at 2**stensize - 1; GL's 8-bit buffer at 255.
         out.append("ST_INCR with fewer than 8 stencil planes")
     if not clear and rs.texture:
-        # The texture stage (numeric_model section 14) is not mapped onto GL texture
-        # state yet: textured triangles are drawn by the software batch, exactly.
-        out.append("texturing")
+        out.extend(texture_inexpressible(rs.texture))
+    if not clear and getattr(rs, "drawmode", 0) != 0:
+        # Overlay, underlay and pop-up planes (drawmode(3G) other than NORMALDRAW)
+        # have no GL attachment here: the software batch draws them.
+        out.append("drawmode other than NORMALDRAW")
+    return out
+
+
+def texture_inexpressible(ident: int) -> list[str]:
+    """What of texture binding ``ident`` GL 1.x texturing cannot draw as the
+    numeric model (docs/numeric_model.md section 14) does (empty: drawn by GL).
+
+    GL_NEAREST/GL_LINEAR and GL_REPEAT/GL_CLAMP_TO_EDGE are the model's point and
+    bilinear filters (texel centres at half-integers in both) and its wraps;
+    GL_MODULATE/GL_DECAL/GL_BLEND its environments (DECAL on 3 and 4
+    components: GL leaves it undefined below).  Texture coordinates arrive as the
+    pipeline computed them (texgen, t2*, clipping), as (s/w, t/w, 0, 1/w), and GL's
+    per-fragment division by q is the model's perspective correction.  Texels are
+    stored as floats (:attr:`Surface.float_texels`), so filtering and environment
+    run in float32 against the model's float64.  Not exact -- allowed difference D6:
+    the environment takes GL's interpolated colour unrounded where the model rounds
+    it to 0..255 first, and float32 bilinear sums round differently now and then;
+    :data:`NATIVE_BILINEAR` off leaves bilinear textures to the software batch.
+    GL chooses between minifying and magnifying from differences over a 2 x 2 pixel
+    quad, not from the exact derivatives of u and v, so unequal TX_MINFILTER and
+    TX_MAGFILTER stay on the software batch; so do filters, wraps, environments and
+    texgen modes beyond these (mipmaps, TG_SPHEREMAP, ...).
+    """
+    from vgxsim.state import codes as C
+    from vgxsim.state.textures import binding
+
+    b = binding(ident)
+    tex = b.texture
+    out = []
+    if tex.minfilter not in (C.TEXF_POINT, C.TEXF_BILINEAR) or tex.magfilter not in (
+            C.TEXF_POINT, C.TEXF_BILINEAR):
+        out.append("texture filter not point or bilinear")
+    elif tex.minfilter != tex.magfilter:
+        out.append("unequal minify and magnify texture filters")
+    elif tex.minfilter == C.TEXF_BILINEAR and not NATIVE_BILINEAR:
+        out.append("bilinear texture filter (NATIVE_BILINEAR off)")
+    if tex.wrap_s not in (C.TEXW_REPEAT, C.TEXW_CLAMP) or tex.wrap_t not in (
+            C.TEXW_REPEAT, C.TEXW_CLAMP):
+        out.append("texture wrap not repeat or clamp")
+    if b.env.mode not in (C.TEV_MODULATE, C.TEV_DECAL, C.TEV_BLEND):
+        out.append("texture environment not modulate, decal or blend")
+    elif b.env.mode == C.TEV_DECAL and tex.nc < 3:
+        out.append("TV_DECAL on a 1- or 2-component texture")
+    if any(getattr(b.texgen, f.name) != f.default for f in fields(b.texgen)
+           if f.name not in ("s_plane", "t_plane")):
+        out.append("texgen mode beyond TG_LINEAR")  # coordinates from a later model
     return out
 
 
@@ -114,6 +176,46 @@ def gouraud_colours(corner_rgba: np.ndarray) -> np.ndarray:
     return out.reshape(-1, 4).astype(np.float32)
 
 
+def _layout(op: tuple) -> tuple:
+    col, coords = op[3], op[4]
+    return (op[0], None if col is None else col.dtype, coords is None)
+
+
+def merged_draws(ops: list[tuple]) -> list[tuple]:
+    """``ops`` with each run of consecutive triangle (or point) draws that share a
+    raster state and a vertex layout joined into one draw, order kept.
+
+    Parameters
+    ----------
+    ops : list of tuple
+        The batch's queue: ``(kind, state, ...)``; draws are ``(kind, state, pos,
+        colours, coords)`` with ``pos`` (N, 3) float32, ``colours`` (N,) uint32 or
+        (N, 4) float32 or None, ``coords`` (N, 4) float32 or None.
+
+    Returns
+    -------
+    list of tuple
+    """
+    runs: list[list[tuple]] = []
+    for op in ops:
+        last = runs[-1][-1] if runs else None
+        if (last is not None and op[0] in (_TRIANGLES, _POINTS) and last[0] == op[0]
+                and (op[1] is last[1] or op[1] == last[1]) and _layout(op) == _layout(last)):
+            runs[-1].append(op)
+        else:
+            runs.append([op])
+    out = []
+    for run in runs:
+        if len(run) == 1:
+            out.append(run[0])
+            continue
+        kind, rs = run[0][0], run[0][1]
+        joined = [None if run[0][k] is None else np.concatenate([op[k] for op in run])
+                  for k in (2, 3, 4)]
+        out.append((kind, rs, *joined))
+    return out
+
+
 def _copies(*arrays):
     return tuple(None if a is None else np.array(a) for a in arrays)
 
@@ -138,6 +240,7 @@ class OpenGLBatch(CommandBatch):
         # The software batch on the same planes draws what OpenGL cannot express.
         self.software = CommandBatch(framebuffer)
         self._routes: dict = {}
+        self._untextured: dict = {}
 
     def _allocate(self) -> None:
         """No kernel arrays: the queue is a list of draw calls."""
@@ -180,11 +283,12 @@ class OpenGLBatch(CommandBatch):
         nt = tris.shape[0]
         if nt == 0:
             return 0
-        if self._cpu_route(rs) or tex is not None:
+        textured = bool(rs.texture) and tex is not None
+        if self._cpu_route(rs) or (bool(rs.texture) != textured):
             self.ntris += nt
             # Copies: the software batch sets up at the flush, and the caller may
             # reuse its arrays once this call returns.  ``tex``: (Nv, 3) s/w, t/w, 1/w
-            # of textured triangles (inexpressible() routes texturing here).
+            # of textured triangles whose texture state GL cannot express.
             self._queue((_CPU, rs, "add_triangles", (*_copies(xf, yf, zw, col, tris, src,
                                                               flat_col), rs,
                                                      *_copies(tex))), nt)
@@ -201,8 +305,15 @@ class OpenGLBatch(CommandBatch):
             colours = np.repeat(unorm8(per_tri), 3, axis=0)
         elif col is not None:
             colours = gouraud_colours(np.asarray(col, np.float64)[corners])
+        coords = None
+        if textured:
+            # (s/w, t/w, 0, 1/w): GL interpolates them linearly in window space and
+            # divides by q per fragment, the model's perspective correction.
+            t = np.asarray(tex, np.float64)[corners]
+            coords = np.zeros((3 * nt, 4), np.float32)
+            coords[:, 0], coords[:, 1], coords[:, 3] = t[:, 0], t[:, 1], t[:, 2]
         self.ntris += nt
-        self._queue((_TRIANGLES, rs, pos, colours), nt)
+        self._queue((_TRIANGLES, rs, pos, colours, coords), nt)
         return nt
 
     def add_fragments(self, xy, z, rgba, rs: RasterState) -> None:
@@ -217,6 +328,9 @@ class OpenGLBatch(CommandBatch):
         n = xy.shape[0]
         if n == 0:
             return
+        if rs.texture:  # only triangles are textured (docs/numeric_model.md section 14)
+            rs = self._untextured.get(rs) or self._untextured.setdefault(
+                rs, replace(rs, texture=0))
         if self._cpu_route(rs):
             self._queue((_CPU, rs, "add_fragments", (*_copies(xy, z, rgba), rs)), 1)
             return
@@ -228,7 +342,7 @@ class OpenGLBatch(CommandBatch):
         colours = (np.asarray(rgba, np.int64) & 0xFFFFFFFF).astype(np.uint32)
         self.nfrags += n
         self.nruns += 1
-        self._queue((_POINTS, rs, pos, colours), 1)
+        self._queue((_POINTS, rs, pos, colours, None), 1)
 
     def add_clear(self, planes: int, colour: int, z: int, stencil: int, rs: RasterState) -> None:
         """Queue a clear of the raster rectangle of ``rs`` through its write masks."""
@@ -259,7 +373,7 @@ class OpenGLBatch(CommandBatch):
         gl = None
         front = back = False
         single = self.fb.back is None
-        for op in self._ops:
+        for op in merged_draws(self._ops) if MERGE_DRAWS else self._ops:
             kind, rs = op[0], op[1]
             if kind == _CPU:
                 if gl is not None:
@@ -280,7 +394,8 @@ class OpenGLBatch(CommandBatch):
             if kind == _CLEAR:
                 gl._clear(op[2], op[3], rs)
             else:
-                gl.draw(GL.GL_TRIANGLES if kind == _TRIANGLES else GL.GL_POINTS, op[2], op[3])
+                gl.draw(GL.GL_TRIANGLES if kind == _TRIANGLES else GL.GL_POINTS, op[2], op[3],
+                        op[4])
         if gl is not None:
             gl.end(front, back, True)
         self.software.flush()

@@ -65,6 +65,14 @@ def _raw():
     return glTexImage2D, glTexSubImage2D, glReadPixels
 
 
+def _raw_arrays():
+    """PyOpenGL's unwrapped vertex-array pointer calls (vertex, colour, texture
+    coordinate)."""
+    from OpenGL.raw.GL.VERSION.GL_1_1 import glColorPointer, glTexCoordPointer, glVertexPointer
+
+    return glVertexPointer, glColorPointer, glTexCoordPointer
+
+
 def _ptr(a: np.ndarray):
     return a.ctypes.data_as(ctypes.c_void_p)
 
@@ -86,6 +94,11 @@ class Surface(mesa.MesaPeer):
         decides which planes exist (a missing z or stencil plane turns the GL test
         off, as the software batch does).
     """
+
+    #: Texels as 32-bit floats: llvmpipe then filters and applies the texture
+    #: environment in float32, not in its 8-bit fixed point (docs/opengl_backend.md,
+    #: D6: within one level of the model, where 8-bit texels give two).
+    float_texels = True
 
     def __init__(self, framebuffer: Framebuffer):
         if not available():
@@ -150,6 +163,7 @@ class Surface(mesa.MesaPeer):
         GL.glBindFramebuffer(GL.GL_FRAMEBUFFER, self._fbo)
         self._state = None
         self._buffers = None
+        GL.glDisable(GL.GL_TEXTURE_2D)  # until a textured state enables it (apply)
         _tex, sub_image, _read = _raw()
         fb = self.fb
         w, h = self.width, self.height
@@ -238,7 +252,8 @@ class Surface(mesa.MesaPeer):
             GL.glDrawBuffers(len(att) or 1, np.array(att or [GL.GL_NONE], np.uint32))
             self._buffers = buffers
 
-    def draw(self, mode: int, pos: np.ndarray, col: np.ndarray | None) -> None:
+    def draw(self, mode: int, pos: np.ndarray, col: np.ndarray | None,
+             tex: np.ndarray | None = None) -> None:
         """Draw vertex arrays (client memory) with the current state.
 
         Parameters
@@ -247,21 +262,36 @@ class Surface(mesa.MesaPeer):
         pos : ndarray, shape (N, 3), float32
             GL window x, y and depth.
         col : ndarray, shape (N, 4), float32, or shape (N,), uint32 packed RGBA, or None
+        tex : ndarray, shape (N, 4), float32, optional
+            Texture coordinates (s/w, t/w, 0, 1/w) of textured triangles.
         """
         GL, _ = mesa._import_gl()
+        vertex_ptr, colour_ptr, coord_ptr = _raw_arrays()
+        # The raw calls take pointers: PyOpenGL's wrappers would also store a reference
+        # to every array in the context's data (a third of an OpenGL frame in
+        # profiles); the arrays are alive until glDrawArrays returns, which is all
+        # client arrays need.
+        pos = np.ascontiguousarray(pos, np.float32)
         GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
-        GL.glVertexPointer(3, GL.GL_FLOAT, 0, pos)
+        vertex_ptr(3, GL.GL_FLOAT, 0, _ptr(pos))
         if col is not None:
             GL.glEnableClientState(GL.GL_COLOR_ARRAY)
+            col = np.ascontiguousarray(col)
             if col.dtype == np.uint32:
-                GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE, 0, col.view(np.uint8).reshape(-1, 4))
+                colour_ptr(4, GL.GL_UNSIGNED_BYTE, 0, _ptr(col))
             else:
-                GL.glColorPointer(4, GL.GL_FLOAT, 0, col)
+                col = col.astype(np.float32, copy=False)
+                colour_ptr(4, GL.GL_FLOAT, 0, _ptr(col))
         else:
             GL.glColor4f(0.0, 0.0, 0.0, 0.0)
+        if tex is not None:
+            tex = np.ascontiguousarray(tex, np.float32)
+            GL.glEnableClientState(GL.GL_TEXTURE_COORD_ARRAY)
+            coord_ptr(4, GL.GL_FLOAT, 0, _ptr(tex))
         GL.glDrawArrays(mode, 0, pos.shape[0])
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
         GL.glDisableClientState(GL.GL_COLOR_ARRAY)
+        GL.glDisableClientState(GL.GL_TEXTURE_COORD_ARRAY)
 
     def close(self) -> None:
         """Free the framebuffer object and destroy the context."""
