@@ -79,10 +79,8 @@ def inexpressible(rs: RasterState, stencil_planes: int, clear: bool = False) -> 
         out.append("ST_INCR with fewer than 8 stencil planes")
     if not clear and rs.texture:
         out.extend(texture_inexpressible(rs.texture))
-    if not clear and getattr(rs, "drawmode", 0) != 0:
-        # Overlay, underlay and pop-up planes (drawmode(3G) other than NORMALDRAW)
-        # have no GL attachment here: the software batch draws them.
-        out.append("drawmode other than NORMALDRAW")
+    # Overlay, underlay and pop-up planes (drawmode(3G) other than NORMALDRAW) never
+    # reach this batch: vgxsim/pipeline/layers.py gives them a software batch of their own.
     return out
 
 
