@@ -58,7 +58,7 @@ def _programs(tmp_path):
         "forever": (os.path.join(CLI, "forever.py"), [], None, 3, 0),
         "exits glerror": (os.path.join(CLI, "exits.py"), ["glerror"], None, None, 1),
     }
-    for name in ("clock", "fmtext", "histstyle", "nurbspatch", "picking"):
+    for name in ("clock", "fmtext", "histstyle", "nurbspatch", "overlay", "picking"):
         out[name] = (os.path.join(CLI, name + ".py"), [],
                      os.path.join(CLI, name + ".events"), None, 0)
     return out
@@ -66,7 +66,7 @@ def _programs(tmp_path):
 
 PROGRAM_NAMES = ["heidmann1991", "heidmann1991 volumes", "shadows_interactive",
                  "soft_shadows", "blend_once", "forever", "exits glerror", "clock", "fmtext",
-                 "histstyle", "nurbspatch", "picking"]
+                 "histstyle", "nurbspatch", "overlay", "picking"]
 
 
 def test_every_program_is_listed(tmp_path):
