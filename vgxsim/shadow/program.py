@@ -204,11 +204,7 @@ class Shadows:
         its full, emitted+ambient and diffuse+specular materials."""
         sc = self.scene
         lmdef(DEFLMODEL, 1, sc.lmodel.props())
-        self.light = []
-        for i, lt in enumerate(sc.lights):
-            lmdef(DEFLIGHT, i + 1, lt.props())
-            self.light.append(LightSlot(i + 1, lt.position, lt.colour))
-        self.nLights = len(self.light)
+        self.define_lights()
         self.matl = []
         for k, obj in enumerate(sc.objects):
             idx = tuple(3 * k + 1 + part for part in (matl_full, matl_emitambient,
@@ -217,6 +213,15 @@ class Shadows:
                                    strict=True):
                 lmdef(DEFMATERIAL, index, obj.material.props(part))
             self.matl.append(idx)
+
+    def define_lights(self) -> None:
+        """lmdef the scene's lights only (what a jittered frame of soft shadows
+        changes; the light model and materials stay defined)."""
+        self.light = []
+        for i, lt in enumerate(self.scene.lights):
+            lmdef(DEFLIGHT, i + 1, lt.props())
+            self.light.append(LightSlot(i + 1, lt.position, lt.colour))
+        self.nLights = len(self.light)
 
     def define_textures(self) -> None:
         """texdef2d each object's TEXTURE image, one TV_MODULATE environment and the
@@ -639,7 +644,7 @@ def accumulate(prog: Shadows, offsets: np.ndarray,
     try:
         for k, off in enumerate(offsets):
             prog.scene = jittered_lights(base, off)
-            prog.define_lighting()  # lmdef the moved lights; lmbind transforms them
+            prog.define_lights()  # lmdef the moved lights; lmbind transforms them
             prog.DrawFrame()
             acbuf(AC_CLEAR_ACCUMULATE if k == 0 else AC_ACCUMULATE, 1.0)
             if on_frame is not None:
