@@ -75,9 +75,9 @@ class WindowBackend:
         ``"pump"`` or ``"menu"``): tests and benchmarks post synthesized input there.
     present_times : dict of int to float
         Frame number (1 = first) -> ``time.perf_counter()`` when it was on the screen.
-    deliveries : list of (float, int)
+    deliveries : list of (float, int, float)
         For each delivered step that carried a ``posted`` time: (posted, frames drawn
-        before it was delivered).
+        before it was delivered, ``time.perf_counter()`` at the delivery).
     """
 
     def __init__(self, record_events=None, overwrite: bool = False,
@@ -94,7 +94,7 @@ class WindowBackend:
         self.feeders: list = []
         self.screens: dict[int, ScreenWindow] = {}
         self.present_times: dict[int, float] = {}
-        self.deliveries: list[tuple[float, int]] = []
+        self.deliveries: list[tuple[float, int, float]] = []
         self._by_window: dict[int, int] = {}
         self._seen_focus: set[int] = set()
         self._seen_expose: set[int] = set()
@@ -189,8 +189,9 @@ class WindowBackend:
     def _flush_motion(self) -> None:
         if self._motion is not None and self._motion != self._last_motion:
             x, y = self._motion
-            self._step(((_dev("MOUSEX"), x), (_dev("MOUSEY"), y)), f"move {x} {y}",
-                       self._motion_posted)
+            self.queue.source.append_motion(LiveStep(
+                events=((_dev("MOUSEX"), x), (_dev("MOUSEY"), y)), text=f"move {x} {y}",
+                posted=self._motion_posted))
             self._last_motion = self._motion
         self._motion = None
 
@@ -291,7 +292,7 @@ class WindowBackend:
         if self.recorder is not None and getattr(step, "text", ""):
             self.recorder.statement(self.queue.frame, step.text)
         if getattr(step, "posted", 0.0):
-            self.deliveries.append((step.posted, self.queue.frame))
+            self.deliveries.append((step.posted, self.queue.frame, time.perf_counter()))
 
     # -- menus ------------------------------------------------------------------------
     def pointer_screen(self) -> ScreenWindow | None:
@@ -344,11 +345,17 @@ class WindowBackend:
     def latencies(self) -> list[float]:
         """Seconds from each posted input to the screen showing the frame drawn after
         it was delivered."""
+        return [wait + show for wait, show in self.latency_parts()]
+
+    def latency_parts(self) -> list[tuple[float, float]]:
+        """Each latency of :meth:`latencies` in two parts, seconds: from the post to
+        the queue's delivery (waiting for the program's next look at its input), and
+        from the delivery to the screen (drawing the frame, swapbuffers, the blit)."""
         out = []
-        for posted, frame in self.deliveries:
+        for posted, frame, at in self.deliveries:
             t = self.present_times.get(frame + 1)
             if t is not None:
-                out.append(t - posted)
+                out.append((at - posted, t - at))
         return out
 
     def close(self) -> None:
