@@ -114,3 +114,22 @@ def test_headless_runs_never_import_pygame(tmp_path):
                          env=env, timeout=600)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "ok"
+
+
+def test_undelivered_motion_is_replaced_by_newer_motion():
+    from vgxsim.window.live import LiveSource, LiveStep
+
+    src = LiveSource(backend=None)
+    src.append(LiveStep(events=((103, 1),), text="press LEFTMOUSE", posted=1.0))
+    for k, (x, posted) in enumerate(((10, 2.0), (11, 3.0), (12, 0.0))):
+        src.append_motion(LiveStep(events=((266, x), (267, 5)), text=f"move {x} 5",
+                                   posted=posted))
+        assert len(src) == 2, k  # the press, then one move: the newest position
+    press, move = list(src)
+    assert press.text == "press LEFTMOUSE"
+    # the newest position, timed from the oldest input it stands for
+    assert (move.text, move.events, move.posted) == ("move 12 5", ((266, 12), (267, 5)), 2.0)
+    src.append(LiveStep(events=((103, 0),), text="release LEFTMOUSE"))
+    src.append_motion(LiveStep(events=((266, 20), (267, 5)), text="move 20 5"))
+    assert [s.text for s in src] == ["press LEFTMOUSE", "move 12 5", "release LEFTMOUSE",
+                                     "move 20 5"]  # motion after a button stays after it
