@@ -133,3 +133,20 @@ def test_undelivered_motion_is_replaced_by_newer_motion():
     src.append_motion(LiveStep(events=((266, 20), (267, 5)), text="move 20 5"))
     assert [s.text for s in src] == ["press LEFTMOUSE", "move 12 5", "release LEFTMOUSE",
                                      "move 20 5"]  # motion after a button stays after it
+
+
+def test_a_resize_of_a_window_closed_meanwhile_is_dropped_unrecorded():
+    from types import SimpleNamespace
+
+    from vgxsim.window.live import LiveSource, LiveStep
+
+    delivered = []
+    backend = SimpleNamespace(session=SimpleNamespace(windows={1: object()}),
+                              delivered=delivered.append)
+    src = LiveSource(backend)
+    src.append(LiveStep(resize=(1, 80, 30), text="resize 80 30 1"))
+    src.append(LiveStep(resize=(2, 50, 40), text="resize 50 40 2"))  # window 2 is gone
+    first, second = src.pop(), src.pop()
+    assert (first.resize, first.text) == ((1, 80, 30), "resize 80 30 1")
+    assert (second.resize, second.text) == (None, "")
+    assert delivered == [first, second]

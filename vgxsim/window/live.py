@@ -59,6 +59,10 @@ class LiveSource(EventSource):
 
     def pop(self) -> Step:
         step = super().pop()
+        if step.resize is not None and step.resize[0] not in self.backend.session.windows:
+            # the user resized a window the program has closed since: nothing to do,
+            # and nothing to record (a replay would find no such window)
+            step = replace(step, resize=None, text="")
         self.backend.delivered(step)
         return step
 
