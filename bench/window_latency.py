@@ -12,9 +12,12 @@ Run (SDL's dummy driver unless a display is wanted)::
     SDL_VIDEODRIVER=dummy python bench/window_latency.py [--size 640x512] [--seconds 8]
         [--mode shadows]
 
-Prints the median and 90th percentile latency, the median frame time and the median
-time from the drawn frame's delivery to the flip (the blit alone).  Numbers on the
-shared 2-core machine are noisy: read them as orders of magnitude.
+Prints the median and 90th percentile latency, its two parts (post to delivery: the
+wait for the program's next look at its input; delivery to flip: drawing the frame,
+swapbuffers and the blit), the median frame time and the load average.  The floor of
+a loop that reads its input once a frame is about half a frame of waiting plus one
+frame of drawing.  Numbers on the shared 2-core machine are noisy: quote medians with
+the load average, compare runs made side by side.
 """
 
 from __future__ import annotations
@@ -74,6 +77,7 @@ def main() -> int:
     threading.Thread(target=hand, daemon=True).start()
     run_program(program, ["--mode", ns.mode], window=backend, size=(w, h), timeout=600)
     lat = np.array(backend.latencies()) * 1000
+    parts = np.array(backend.latency_parts()).reshape(-1, 2) * 1000
     flips = np.array(sorted(backend.present_times.values()))
     frame_ms = np.median(np.diff(flips)) * 1000 if len(flips) > 2 else float("nan")
     backend.close()
@@ -83,6 +87,9 @@ def main() -> int:
     print(f"{ns.size} mode {ns.mode}: {len(lat)} samples; input-to-photon latency median "
           f"{np.median(lat):.1f} ms, p90 {np.percentile(lat, 90):.1f} ms; frame time median "
           f"{frame_ms:.1f} ms ({1000 / frame_ms:.1f} frames/s)")
+    print(f"  parts: post to delivery median {np.median(parts[:, 0]):.1f} ms, delivery to "
+          f"flip median {np.median(parts[:, 1]):.1f} ms; load average "
+          + " ".join(f"{v:.2f}" for v in os.getloadavg()))
     return 0
 
 

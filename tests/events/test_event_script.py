@@ -113,6 +113,11 @@ def test_custom_resolver():
         ("tick -2", 1, "-2"),
         ("type \u263a", 1, "\u263a"),
         ("press -4", 1, "-4"),
+        ("resize 80", 1, "80"),
+        ("resize 0 30", 1, "0"),
+        ("resize 80 30 0", 1, "0"),
+        ("resize 80 30 1 2", 1, "2"),
+        ("resize wide 30", 1, "wide"),
     ],
 )
 def test_errors_name_file_line_and_token(text, lineno, token):
@@ -166,3 +171,30 @@ def test_non_utf8_script_names_the_file_and_line(tmp_path):
     with pytest.raises(ScriptError, match=r"latin1\.events:2: not UTF-8 text") as info:
         load_script(path)
     assert info.value.lineno == 2 and info.value.filename == str(path)
+
+
+def test_resize_statement():
+    steps = parse_script("resize 80 30\nafter 4 resize 800 600 2\nwait 3\nresize 9 9",
+                         filename="r.events")
+    assert [(s.resize, s.after, s.wait, s.events) for s in steps] == [
+        ((0, 80, 30), 0, 0, ()), ((2, 800, 600), 4, 0, ()), ((0, 9, 9), 0, 3, ())]
+    assert steps[1].where == "r.events:2"
+
+
+def test_a_delivered_resize_calls_the_window_resizer_before_its_events():
+    q = EventQueue(EventSource(parse_script("resize 80 30 2\nresize 5 5 9", filename="s")))
+    seen = []
+
+    def resizer(gid, w, h):
+        if gid == 9:
+            raise ValueError("no open window has gid 9")
+        seen.append((gid, w, h))
+
+    q.window_resizer = resizer
+    q.qtest()
+    assert seen == [(2, 80, 30)]
+    with pytest.raises(ValueError, match=r"^s:2: no open window has gid 9$"):
+        q.qtest()
+    q = EventQueue(EventSource(parse_script("resize 80 30", filename="t")))
+    with pytest.raises(ValueError, match=r"^t:1: resize: no window to resize"):
+        q.qtest()

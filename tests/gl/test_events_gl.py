@@ -143,3 +143,28 @@ def test_qread_shows_a_single_buffered_screen_before_waiting():
         gl.qread()  # the queue is empty: the picture is shown, then the run ends
     assert len(sink) == 1
     assert (sink[0] == [0, 0, 255, 255]).all()
+
+
+def test_scripted_resize_reshapes_the_window_and_enters_redraw():
+    # events script "resize W H [GID]": the user drags the window's corner
+    script("after 1 resize 40 24\nresize 16 12 1")
+    g = gl.winopen("w")
+    gl.unqdevice(D.INPUTCHANGE)
+    gl.RGBmode()
+    gl.gconfig()
+    assert gl.qread() == (D.REDRAW, g) and gl.getsize() == (640, 512)
+    gl.swapbuffers()  # frame 1: the resize is due
+    assert gl.qread() == (D.REDRAW, g)
+    gl.reshapeviewport()
+    assert gl.getsize() == (40, 24) and gl.getviewport() == (0, 39, 0, 23)
+    assert gl.qread() == (D.REDRAW, g)  # the second resize, once the queue was empty
+    assert gl.getsize() == (16, 12)
+
+
+def test_scripted_resize_of_a_window_that_is_not_open_names_the_line():
+    script("resize 40 24 7")
+    gl.winopen("w")
+    gl.unqdevice(D.INPUTCHANGE)
+    gl.qread()  # winopen's REDRAW
+    with pytest.raises(ValueError, match=r"^<script>:1: .*no open window has gid 7"):
+        gl.qread()

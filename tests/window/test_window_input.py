@@ -82,9 +82,11 @@ def test_resize_and_expose_enter_redraw(tmp_path, backend_factory, capsys):
     status, lines = _run(tmp_path, backend_factory, capsys, plan)
     assert status == 3
     redraws = [ln for ln in lines if ln.startswith("REDRAW")]
-    # winopen's REDRAW, the resize's and the second expose's (the first expose of a
-    # new window is winopen's); the resize came before the program read the first one
-    assert redraws == ["REDRAW 1 (80, 30) (0, 79, 0, 29)"] * 3
+    # winopen's REDRAW (already queued, read before the resize is delivered: the old
+    # size), the resize's and the second expose's (the first expose of a new window is
+    # winopen's); the resize is a queue step, delivered in order as a replay would
+    assert redraws == ["REDRAW 1 (64, 48) (0, 63, 0, 47)",
+                       "REDRAW 1 (80, 30) (0, 79, 0, 29)", "REDRAW 1 (80, 30) (0, 79, 0, 29)"]
 
 
 def test_closing_twice_ends_a_program_that_ignores_winquit(tmp_path, backend_factory,
@@ -112,3 +114,39 @@ def test_headless_runs_never_import_pygame(tmp_path):
                          env=env, timeout=600)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "ok"
+
+
+def test_undelivered_motion_is_replaced_by_newer_motion():
+    from vgxsim.window.live import LiveSource, LiveStep
+
+    src = LiveSource(backend=None)
+    src.append(LiveStep(events=((103, 1),), text="press LEFTMOUSE", posted=1.0))
+    for k, (x, posted) in enumerate(((10, 2.0), (11, 3.0), (12, 0.0))):
+        src.append_motion(LiveStep(events=((266, x), (267, 5)), text=f"move {x} 5",
+                                   posted=posted))
+        assert len(src) == 2, k  # the press, then one move: the newest position
+    press, move = list(src)
+    assert press.text == "press LEFTMOUSE"
+    # the newest position, timed from the oldest input it stands for
+    assert (move.text, move.events, move.posted) == ("move 12 5", ((266, 12), (267, 5)), 2.0)
+    src.append(LiveStep(events=((103, 0),), text="release LEFTMOUSE"))
+    src.append_motion(LiveStep(events=((266, 20), (267, 5)), text="move 20 5"))
+    assert [s.text for s in src] == ["press LEFTMOUSE", "move 12 5", "release LEFTMOUSE",
+                                     "move 20 5"]  # motion after a button stays after it
+
+
+def test_a_resize_of_a_window_closed_meanwhile_is_dropped_unrecorded():
+    from types import SimpleNamespace
+
+    from vgxsim.window.live import LiveSource, LiveStep
+
+    delivered = []
+    backend = SimpleNamespace(session=SimpleNamespace(windows={1: object()}),
+                              delivered=delivered.append)
+    src = LiveSource(backend)
+    src.append(LiveStep(resize=(1, 80, 30), text="resize 80 30 1"))
+    src.append(LiveStep(resize=(2, 50, 40), text="resize 50 40 2"))  # window 2 is gone
+    first, second = src.pop(), src.pop()
+    assert (first.resize, first.text) == ((1, 80, 30), "resize 80 30 1")
+    assert (second.resize, second.text) == (None, "")
+    assert delivered == [first, second]

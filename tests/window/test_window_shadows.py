@@ -80,3 +80,34 @@ def test_recorded_session_replays_headless_to_the_same_frames(tmp_path, backend_
         assert np.array_equal(x, y), f"frame {k} differs"
     # the menu chose "Show Shadows": the last frames differ from the objects-only ones
     assert not np.array_equal(live[-1], live[1])
+
+
+def test_a_recorded_resize_replays_headless_to_the_same_frames(tmp_path, backend_factory,
+                                                               capsys):
+    import pygame
+
+    def resize(backend):
+        win = backend.screens[1].window
+        return [(pygame.WINDOWSIZECHANGED, dict(x=120, y=70, window=win)),
+                (pygame.WINDOWEXPOSED, dict(window=win))]
+
+    events = tmp_path / "resized.events"
+    live = MemorySink()
+    a, b = (40, 40), (52, 34)
+    plan = [(1, resize), (1, [motion(a), press(2, a)]), (1, [motion(b)]),
+            (0, [release(2, b)]), (2, [key(pygame.K_ESCAPE, "\x1b")])]
+    backend = backend_factory(plan, record_events=events)
+    assert run_program(PROGRAM, window=backend, frames=live, size=(W, H), timeout=120) == 0
+    live_out = capsys.readouterr().out
+    assert "resize 120 70 1" in events.read_text()
+
+    replay = MemorySink()
+    assert run_program(PROGRAM, events=events, frames=replay, size=(W, H)) == 0
+    assert capsys.readouterr().out == live_out
+    assert len(live) == len(replay) > 4
+    for k, (x, y) in enumerate(zip(live, replay, strict=True)):
+        assert np.array_equal(x, y), f"frame {k} differs"
+    # the program redrew at the new size: its viewport and projection followed REDRAW
+    assert live[0].shape == (H, W, 4) and live[-1].shape == (70, 120, 4)
+    last = np.asarray(live[-1])
+    assert last[:, :, :3].any(axis=(0, 2)).all()  # the scene spans the new width

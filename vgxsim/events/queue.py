@@ -29,6 +29,10 @@ that ``getbutton``/``getvaluator`` report.  :class:`EventQueue` models that:
   - anything else (KEYBD, REDRAW, WINQUIT, TIMERn, ...) makes an entry if the
     device is queued; no state is kept for it.
 
+  A step may also reshape a window (a script's ``resize``): the window's planes
+  take the new size and ``(REDRAW, gid)`` is entered, through the hook
+  :attr:`EventQueue.window_resizer` the gl layer installs.
+
   ``qenter(dev, val)`` bypasses all of this: the entry is made whatever the
   device, and no state changes.  Queue values are C shorts (``qread`` returns
   ``short *val``), so they wrap to -32768..32767.
@@ -122,6 +126,10 @@ class Step:
         End the run (raise :class:`ScriptExhausted`) when delivered.
     where : str
         Where the step came from (``"file:line"``), for messages.
+    resize : (int, int, int) or None
+        ``(gid, width, height)``: the user reshaped window ``gid`` (0: the current
+        window) to that size, before the step's events (see
+        :attr:`EventQueue.window_resizer`).
     """
 
     events: tuple[tuple[int, int], ...] = ()
@@ -130,6 +138,7 @@ class Step:
     ticks: int = 0
     stop: bool = False
     where: str = ""
+    resize: tuple[int, int, int] | None = None
 
 
 class EventSource:
@@ -233,6 +242,11 @@ class EventQueue:
         Timer ticks so far (frames, idle ticks and script ``tick`` steps).
     source : EventSource
         The scripted input still to come.
+    window_resizer : callable or None
+        ``window_resizer(gid, width, height)`` reshapes a window for a delivered
+        :attr:`Step.resize` (the gl layer installs it at ``winopen``: the window's
+        planes take the size and ``(REDRAW, gid)`` is entered, as when a user drags
+        the window's corner).  A resize step delivered without one is an error.
     """
 
     def __init__(
@@ -256,6 +270,7 @@ class EventQueue:
         self._timer_count: dict[int, int] = {}
         self._last_delivery = 0
         self._idle = 0
+        self.window_resizer = None
 
     # ------------------------------------------------------------------ setup
     def window_opened(self, gid: int = 1) -> None:
@@ -469,6 +484,14 @@ class EventQueue:
 
     def _deliver(self, step: Step) -> None:
         self._last_delivery = self.frame
+        if step.resize is not None:
+            where = f"{step.where}: " if step.where else ""
+            if self.window_resizer is None:
+                raise ValueError(f"{where}resize: no window to resize (no window open)")
+            try:
+                self.window_resizer(*step.resize)
+            except ValueError as exc:
+                raise ValueError(f"{where}{exc}") from None
         for dev, val in step.events:
             self.post(dev, val)
         if step.ticks:

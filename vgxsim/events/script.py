@@ -29,9 +29,11 @@ Grammar (EBNF)::
               | "type" TEXT            (* one keystroke per character *)
               | "tick" [ COUNT ]       (* COUNT timer ticks, default 1 *)
               | "menu" CHOICE { CHOICE } (* answer the next dopup, see below *)
+              | "resize" W H [ GID ]   (* the user reshapes a window, see below *)
               | "stop" ;               (* end the run *)
     DEVICE    = NAME | INT ;           (* LEFTMOUSE, ESCKEY, MOUSEX, 103, ... *)
     VALUE     = INT ;  X = INT ;  Y = INT ;
+    W         = INT >= 1 ;  H = INT >= 1 ;  GID = INT >= 1 ;
     FRAME     = NAT ;  FRAMES = NAT ;  COUNT = NAT ;
     KEY       = CHAR | KEYNAME ;       (* "a", "'#'", "ESC", "SPACE", ... *)
     TEXT      = TOKEN ;                (* quote it if it has spaces *)
@@ -80,6 +82,17 @@ integer is the entry's number as ``setpup`` counts them (1 = first entry, the
 (their text without the ``%`` directives, case-sensitive).  ``menu 0`` dismisses
 the menu.  ``click MENUBUTTON`` then ``menu Quit`` is what a user does to choose
 Quit from a program that calls ``dopup`` on ``(MENUBUTTON, 1)``.
+
+Resizing
+--------
+``resize W H [GID]`` is the user dragging a window's corner until it is W x H
+pixels: window GID (default: the current window when the step is delivered) keeps
+its lower-left corner, its planes take the new size (their contents are lost, as
+after a reshape on the workstation) and ``(REDRAW, GID)`` is entered, so the
+program's ``reshapeviewport`` and ``getsize`` see the new size when it reads the
+REDRAW.  A window session's ``--record-events`` writes one for each resize the user
+made (``after 12 resize 800 600 1``).  No window with that gid, or a size past
+vgxsim's limit, is an error naming the script line when the step is delivered.
 
 Example::
 
@@ -462,6 +475,15 @@ def parse_script(
         if word.lower() == "after":
             after = line.integer("frame number", 0)
             word = line.next("statement after the frame number")
+        if word.lower() == "resize":
+            width = line.integer("window width", 1)
+            height = line.integer("window height", 1)
+            gid = line.integer("window gid", 1) if line.pos < len(line.tokens) else 0
+            line.end()
+            steps.append(Step(after=after, wait=pending_wait, where=f"{filename}:{lineno}",
+                              resize=(gid, width, height)))
+            pending_wait = 0
+            continue
         if word.lower() == "menu":
             steps.append(MenuChoice(after=after, wait=pending_wait, where=f"{filename}:{lineno}",
                                     path=_menu_path(line)))

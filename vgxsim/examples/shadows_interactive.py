@@ -118,7 +118,7 @@ def main(argv: list[str]) -> int:
         if soft and not moved and soft_done < opts.soft_max:
             # one more jittered image a frame, the running average shown each time
             prog.scene = jittered_lights(scene, offsets[soft_done])
-            prog.define_lighting()
+            prog.define_lights()
             prog.viewing()
             prog.DrawFrame()
             acbuf(AC_CLEAR_ACCUMULATE if soft_done == 0 else AC_ACCUMULATE, 1.0)
@@ -128,7 +128,7 @@ def main(argv: list[str]) -> int:
             jittered = True
         else:
             if jittered:  # put the lights back
-                prog.define_lighting()
+                prog.define_lights()
                 jittered = False
             prog.viewing()
             prog.DrawFrame()

@@ -42,6 +42,10 @@ def window_opened(gid: int) -> None:
     """What ``winopen`` does to the queue: REDRAW now, INPUTCHANGE at the next read."""
     q = event_queue()
     q.window_opened(gid)
+    if q.window_resizer is None:  # a script's (or the user's) resize reaches the windows
+        from ._window import reshape_window
+
+        q.window_resizer = reshape_window
     session.focus_pending = (q, gid)  # INPUTCHANGE at the next read of this queue
 
 

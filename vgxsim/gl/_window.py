@@ -366,10 +366,11 @@ def noport() -> None:
     a headless window costs nothing on a screen."""
 
 
-def _reshape(ctx: Context, w: int, h: int) -> bool:
+def _reshape(ctx: Context, w: int, h: int, gid: int | None = None) -> bool:
     """Give the window a new size: planes are reallocated (their contents are lost, as
-    after a reshape on the workstation) and REDRAW is entered.  The viewport and draw
-    buffers are kept: IRIS GL programs call reshapeviewport on REDRAW."""
+    after a reshape on the workstation) and REDRAW is entered (for ``gid``, default
+    the current window, which ``ctx`` then is).  The viewport and draw buffers are
+    kept: IRIS GL programs call reshapeviewport on REDRAW."""
     if (w, h) == (ctx.width, ctx.height):
         return False
     keep = {k: getattr(ctx.raster, k) for k in ("viewport", "scrmask", "frontbuffer",
@@ -378,8 +379,28 @@ def _reshape(ctx: Context, w: int, h: int) -> bool:
     ctx.configure(replace(ctx.config, width=w, height=h))
     ctx.raster.set(**keep)
     _baseline(ctx)
-    _events.event_queue().qenter(DEVICE.REDRAW, session.current)  # ctx is current
+    _events.event_queue().qenter(DEVICE.REDRAW, session.current if gid is None else gid)
     return True
+
+
+def reshape_window(gid: int, width: int, height: int) -> None:
+    """The user reshaped window ``gid`` (0: the current one) to ``width`` x ``height``,
+    its lower-left corner kept: new planes and ``(REDRAW, gid)`` (:func:`_reshape`).
+    The event queue's ``window_resizer`` (a window session's resize, a script's
+    ``resize`` statement).
+
+    Raises
+    ------
+    GLValueError
+        No open window has that gid, or the size is past vgxsim's limit.
+    """
+    g = gid or session.current
+    args = (gid, width, height)
+    ctx = session.windows.get(g)
+    if ctx is None:
+        raise GLValueError(f"resize {width} {height} {gid}: no open window has gid {g}")
+    _check_size("resize", args, width, height)
+    _reshape(ctx, width, height, g)
 
 
 @gl_function(record=False)

@@ -219,7 +219,8 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
            seed: int = 1991, edges: str = "silhouette", subpixel: bool = False,
            display_objects: bool = True, signs: str = "screen",
            on_soft_frame: Callable[[int, np.ndarray], None] | None = None,
-           technique=None, technique_options: dict | None = None) -> Frame:
+           technique=None, technique_options: dict | None = None,
+           cache_volumes: bool = True) -> Frame:
     """Render one frame of the ``shadows`` program in a window of its own.
 
     Parameters
@@ -257,6 +258,10 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
         'shadowmap') and ``Frame.stencil_zero`` its lit value.
     technique_options : dict, optional
         Keyword options of the named technique (e.g. ``{"size": 1024}``).
+    cache_volumes : bool
+        Keep each light's shadow faces (and their display object) while the light
+        stays put (see :class:`Shadows`); False: recompute and redraw them in
+        immediate mode every frame (same pixels).
 
     Returns
     -------
@@ -272,14 +277,16 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
                          seed=seed, edges=edges, subpixel=subpixel,
                          display_objects=display_objects, signs=signs,
                          on_soft_frame=on_soft_frame, technique=technique,
-                         technique_options=technique_options)[0]
+                         technique_options=technique_options,
+                         cache_volumes=cache_volumes)[0]
 
 
 def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
                   size: tuple[int, int], light: int, soft: int | str, seed: int, edges: str,
                   subpixel: bool, display_objects: bool, signs: str,
                   on_soft_frame: Callable[[int, np.ndarray], None] | None,
-                  technique=None, technique_options: dict | None = None) -> list[Frame]:
+                  technique=None, technique_options: dict | None = None,
+                  cache_volumes: bool = True) -> list[Frame]:
     """One window, one program set-up, one frame per camera (display objects made once)."""
     from vgxsim.gl import (
         TRUE,
@@ -309,7 +316,8 @@ def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
 
     w, h = (int(v) for v in size)
     prog = Shadows(scene, mode=mode, edges=edges, light=light, display_objects=display_objects,
-                   signs=signs, stencil_hook=hook if frames == 0 else None, technique=tech)
+                   signs=signs, stencil_hook=hook if frames == 0 else None, technique=tech,
+                   cache_volumes=cache_volumes)
     previous = session.current
     prefsize(w, h)
     gid = winopen("shadows")
@@ -373,7 +381,8 @@ def render_spin(scene: Scene | None, frames: int, **kw) -> list[np.ndarray]:
         raise ValueError(f"frames must be >= 1, not {frames}")
     opts = dict(mode="shadows", size=(640, 512), light=0, soft=0, seed=1991,
                 edges="silhouette", subpixel=False, display_objects=True, signs="screen",
-                on_soft_frame=None, technique=None, technique_options=None)
+                on_soft_frame=None, technique=None, technique_options=None,
+                cache_volumes=True)
     opts.update(kw)
     cams = [orbit(scene.camera, rotate=(360.0 * k / frames, 0.0)) for k in range(frames)]
     with warnings.catch_warnings():

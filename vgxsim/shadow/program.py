@@ -118,6 +118,14 @@ class Shadows:
     display_objects : bool
         Draw objects from display objects (True) or in immediate mode (False); both
         issue the same polygons.
+    cache_volumes : bool
+        Not the article: keep each light's shadow faces, and in the 'shadows' mode a
+        display object holding their drawing, until the light, the casters, the
+        extrusion length, the edge set or the eye (for ``signs='article'``) change
+        (True); or compute and draw them in immediate mode every frame (False).  Both
+        issue the same polygons and stencil calls (tested).  The article computes the
+        faces "for every polygon edge" each frame; with static lights and objects
+        nothing of them changes between frames.
     technique : vgxsim.shadow.techniques.Technique, optional
         Not the article: a later shadow technique that draws the 'shadows' mode
         through this engine (:mod:`vgxsim.shadow.techniques`); None: the 1991 code.
@@ -138,7 +146,8 @@ class Shadows:
                  edges: str = "silhouette", faithful: bool = False,
                  stencil_hook: Callable[[int], None] | None = None,
                  effective_zclear: bool = False, *, light: int = 0,
-                 display_objects: bool = True, signs: str = "article", technique=None):
+                 display_objects: bool = True, signs: str = "article", technique=None,
+                 cache_volumes: bool = True):
         if mode not in MODES:
             raise ValueError(f"mode must be one of {MODES}, not {mode!r}")
         if edges not in EDGES:
@@ -163,6 +172,10 @@ class Shadows:
         self.MYZERO = 128  # set from getgdesc(GD_BITS_STENCIL) by config()
         self.stencil_bits = 8
         self._geometry: dict[int, int] = {}  # id(object) -> display object
+        self.cache_volumes = cache_volumes
+        # per light index: (key, faces, ingoing) and (key, display object of the faces)
+        self._volumes: dict[int, tuple] = {}
+        self._face_objects: dict[int, tuple] = {}
         self.texture: list[int] = []  # per object: texdef2d index, 0 for none
 
     # -- set-up (elided in the article: "/* Set up. */ . . .") -------------------------
@@ -191,11 +204,7 @@ class Shadows:
         its full, emitted+ambient and diffuse+specular materials."""
         sc = self.scene
         lmdef(DEFLMODEL, 1, sc.lmodel.props())
-        self.light = []
-        for i, lt in enumerate(sc.lights):
-            lmdef(DEFLIGHT, i + 1, lt.props())
-            self.light.append(LightSlot(i + 1, lt.position, lt.colour))
-        self.nLights = len(self.light)
+        self.define_lights()
         self.matl = []
         for k, obj in enumerate(sc.objects):
             idx = tuple(3 * k + 1 + part for part in (matl_full, matl_emitambient,
@@ -204,6 +213,15 @@ class Shadows:
                                    strict=True):
                 lmdef(DEFMATERIAL, index, obj.material.props(part))
             self.matl.append(idx)
+
+    def define_lights(self) -> None:
+        """lmdef the scene's lights only (what a jittered frame of soft shadows
+        changes; the light model and materials stay defined)."""
+        self.light = []
+        for i, lt in enumerate(self.scene.lights):
+            lmdef(DEFLIGHT, i + 1, lt.props())
+            self.light.append(LightSlot(i + 1, lt.position, lt.colour))
+        self.nLights = len(self.light)
 
     def define_textures(self) -> None:
         """texdef2d each object's TEXTURE image, one TV_MODULATE environment and the
@@ -257,6 +275,10 @@ class Shadows:
         for obj in self._geometry.values():
             delobj(obj)
         self._geometry.clear()
+        for _, obj in self._face_objects.values():
+            delobj(obj)
+        self._face_objects.clear()
+        self._volumes.clear()
         if self.technique is not None:
             self.technique.teardown(self)
 
@@ -311,21 +333,102 @@ class Shadows:
                 texbind(TX_TEXTURE_0, 0)
         lmbind(MATERIAL, 0)
 
+    def _volume_key(self, i: int) -> tuple:
+        """What light ``i``'s shadow faces depend on.  The casters are compared by
+        identity (scenes and meshes are immutable) and kept alive by the key, so an
+        id cannot be reused while it is cached."""
+        sc = self.scene
+        return (self.edges, sc.casters, tuple(sc.lights[i].position), sc.volume_length,
+                tuple(sc.camera.eye))
+
     def volume_faces(self, i: int) -> tuple[np.ndarray, np.ndarray]:
         """The article's ``v3= . . . ; v4= . . . ; ingoing= . . . ;`` for every edge of
-        light ``i``: (nEdges, 4, 3) faces v1, v2, v3, v4 and (nEdges,) ingoing."""
-        return shadow_faces(self.scene, i, self.edges)
+        light ``i``: (nEdges, 4, 3) faces v1, v2, v3, v4 and (nEdges,) ingoing.
 
-    def draw_faces_by_facing(self, faces: np.ndarray, ops: tuple[int, int] = (ST_INCR, ST_DECR)
-                             ) -> None:
+        Kept per light while its :meth:`_volume_key` stays the same
+        (``cache_volumes``); the arrays are shared, not to be written."""
+        if not self.cache_volumes:
+            return shadow_faces(self.scene, i, self.edges)
+        key = self._volume_key(i)
+        hit = self._volumes.get(i)
+        if hit is None or hit[0] != key:
+            faces, ingoing = shadow_faces(self.scene, i, self.edges)
+            faces.flags.writeable = ingoing.flags.writeable = False
+            hit = self._volumes[i] = (key, faces, ingoing)
+        return hit[1], hit[2]
+
+    def _face_key(self, i: int) -> tuple:
+        return (self._volume_key(i), self.signs)
+
+    def _drop_face_object(self, i: int) -> None:
+        old = self._face_objects.pop(i, None)
+        if old is not None:
+            delobj(old[1])
+
+    def _screen_face_object(self, i: int, faces: np.ndarray) -> int | None:
+        """``signs='screen'``: the display object holding :meth:`draw_quads` of light
+        ``i``'s faces, made again (the old one deleted) when the faces' key changes --
+        one object per light, so jittered lights do not pile objects up; None
+        without ``cache_volumes``."""
+        if not self.cache_volumes:
+            return None
+        key = self._face_key(i)
+        hit = self._face_objects.get(i)
+        if hit is not None and hit[0] == key:
+            return hit[1]
+        self._drop_face_object(i)
+        name = genobj()
+        makeobj(name)
+        self.draw_quads(faces)
+        closeobj()
+        self._face_objects[i] = (key, name)
+        return name
+
+    def _open_face_object(self, i: int) -> int | None:
+        """``signs='article'``: None when the edge loop is to run -- immediate (no
+        ``cache_volumes``) or into a display object opened here; else the object
+        that already holds the loop's calls for light ``i``'s current faces."""
+        if not self.cache_volumes:
+            return None
+        key = self._face_key(i)
+        hit = self._face_objects.get(i)
+        if hit is not None and hit[0] == key:
+            return hit[1]
+        self._drop_face_object(i)
+        name = genobj()
+        makeobj(name)
+        self._face_objects[i] = (key, name)
+        return None
+
+    def _close_face_object(self, i: int, recorded: int | None) -> None:
+        """After the edge loop: close the object it was recorded into and draw it, or
+        draw the one it was recorded into before."""
+        if not self.cache_volumes:
+            return
+        if recorded is None:
+            closeobj()
+            recorded = self._face_objects[i][1]
+        callobj(recorded)
+
+    def draw_faces_by_facing(self, faces: np.ndarray, ops: tuple[int, int] = (ST_INCR, ST_DECR),
+                             obj: int | None = None) -> None:
         """Draw shadow faces twice with culling: the front-facing ones (as the raster
-        sees them) with ``ops[0]``, the back-facing ones with ``ops[1]``."""
+        sees them) with ``ops[0]``, the back-facing ones with ``ops[1]``; from the
+        display object ``obj`` (holding :meth:`draw_quads` of ``faces``) if given."""
         for cull, op in ((backface, ops[0]), (frontface, ops[1])):
             cull(TRUE)
             stencil(TRUE, 0, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, op)
-            for quad in faces:
-                bgnpolygon(); v3f(quad[0]); v3f(quad[1]); v3f(quad[2]); v3f(quad[3]); endpolygon()
+            if obj is not None:
+                callobj(obj)
+            else:
+                self.draw_quads(faces)
             cull(FALSE)
+
+    @staticmethod
+    def draw_quads(faces: np.ndarray) -> None:
+        """One polygon per shadow face, (N, 4, 3) v1 .. v4."""
+        for quad in faces.tolist():  # Python floats: numpy scalars cost the front end more
+            bgnpolygon(); v3f(quad[0]); v3f(quad[1]); v3f(quad[2]); v3f(quad[3]); endpolygon()
 
     def draw_shadows(self) -> None:
         """The article's code segment ("Show Shadows")."""
@@ -352,15 +455,20 @@ class Shadows:
             zwritemask(0x0)                           # /* We aren't changing any z values */
             wmpack(0x0)                               # /* or any color values. */
             faces, ingoing_flags = self.volume_faces(i)
-            nEdges = len(faces) if self.signs == "article" else 0
             if self.signs == "screen":                # (not in the article: see ``signs``)
-                self.draw_faces_by_facing(faces)
+                self.draw_faces_by_facing(faces, obj=self._screen_face_object(i, faces))
+            recorded = self._open_face_object(i) if self.signs == "article" else None
+            nEdges = len(faces) if self.signs == "article" and recorded is None else 0
+            if nEdges:                                # (Python floats: cheaper calls)
+                faces, ingoing_flags = faces.tolist(), ingoing_flags.tolist()
             for iEdge in range(nEdges):               # /* For each edge in the scene, */
                 v1, v2, v3, v4 = faces[iEdge]; ingoing = ingoing_flags[iEdge]  # /* project shadow face from this edge. */
                 stencil(TRUE, 0, SF_ALWAYS, 0xff,     # /* Write stencil unconditionally, */
                         ST_KEEP, ST_KEEP,             # /* do nothing if zbuffer test fails, */
                         ST_INCR if ingoing else ST_DECR)  # /* otherwise, add or subtract one. */
                 bgnpolygon(); v3f(v1); v3f(v2); v3f(v3); v3f(v4); endpolygon()  # /* Draw the shadow volume face. */
+            if self.signs == "article":               # (not in the article: the loop's calls
+                self._close_face_object(i, recorded)  #  recorded once, replayed per frame)
             if self.stencil_hook is not None:         # (not in the article: lets tests
                 self.stencil_hook(i)                  #  read the stencil planes)
             # /* Add highlights for this light, constrained by stencil mask to unshadowed areas. */
@@ -536,7 +644,7 @@ def accumulate(prog: Shadows, offsets: np.ndarray,
     try:
         for k, off in enumerate(offsets):
             prog.scene = jittered_lights(base, off)
-            prog.define_lighting()  # lmdef the moved lights; lmbind transforms them
+            prog.define_lights()  # lmdef the moved lights; lmbind transforms them
             prog.DrawFrame()
             acbuf(AC_CLEAR_ACCUMULATE if k == 0 else AC_ACCUMULATE, 1.0)
             if on_frame is not None:

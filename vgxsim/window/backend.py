@@ -13,17 +13,19 @@ Input semantics (IRIS GL, see :mod:`vgxsim.window.devices` for the device number
 * key devices and KEYBD (the character typed), as :mod:`vgxsim.window.devices` maps;
 * INPUTCHANGE: the gid of the window that gained the focus, 0 when the program's
   windows lost it (the first focus of a new window is the one ``winopen`` models);
-* REDRAW: when SDL reports a window exposed again, and when the user resized it (the
-  window's planes take the new size first, through ``winposition``, so
-  ``reshapeviewport`` and ``getsize`` see it);
+* REDRAW: when SDL reports a window exposed again, and when the user resized it (a
+  queue step like the events script's ``resize W H GID``: when the queue delivers it
+  the window's planes take the new size and REDRAW is entered, so
+  ``reshapeviewport`` and ``getsize`` see it; until then the screen keeps the
+  user's size);
 * closing a window: ``(WINQUIT, gid)`` if WINQUIT is queued, else ``(WINSHUT, gid)``
   if WINSHUT is, else the run ends (the workstation killed a program that did not
   queue them); the script gets a ``stop`` then.  ``winopen`` queues both (vgxsim's
   rule, :data:`vgxsim.events.queue.AUTO_QUEUED`), so a program that never reads them
   would keep its window for ever: closing the same window a second time ends the run.
 
-A resize cannot be written to an events script (the script language has no statement
-for it); it is written as a comment, and a replay keeps the window's size.
+Every step, a resize included, is written to the ``--record-events`` script as it is
+delivered, so a headless replay resizes the window between the same frames.
 """
 
 from __future__ import annotations
@@ -73,9 +75,9 @@ class WindowBackend:
         ``"pump"`` or ``"menu"``): tests and benchmarks post synthesized input there.
     present_times : dict of int to float
         Frame number (1 = first) -> ``time.perf_counter()`` when it was on the screen.
-    deliveries : list of (float, int)
+    deliveries : list of (float, int, float)
         For each delivered step that carried a ``posted`` time: (posted, frames drawn
-        before it was delivered).
+        before it was delivered, ``time.perf_counter()`` at the delivery).
     """
 
     def __init__(self, record_events=None, overwrite: bool = False,
@@ -92,7 +94,7 @@ class WindowBackend:
         self.feeders: list = []
         self.screens: dict[int, ScreenWindow] = {}
         self.present_times: dict[int, float] = {}
-        self.deliveries: list[tuple[float, int]] = []
+        self.deliveries: list[tuple[float, int, float]] = []
         self._by_window: dict[int, int] = {}
         self._seen_focus: set[int] = set()
         self._seen_expose: set[int] = set()
@@ -103,6 +105,7 @@ class WindowBackend:
         self._pointer: tuple[int | None, tuple[int, int]] = (None, (0, 0))
         self._held: set[int] = set()
         self._pending: dict[int, np.ndarray] = {}
+        self.resizing: dict[int, tuple[int, int]] = {}  # gid -> user's size, undelivered
         self._reposted: list = []
 
     # -- installing -------------------------------------------------------------------
@@ -148,7 +151,7 @@ class WindowBackend:
             return
         self._pending.pop(screen.gid, None)
         title = window_of(ctx).title if ctx is not None else None
-        t = screen.show(image, title)
+        t = screen.show(image, title, keep_size=screen.gid in self.resizing)
         self.present_times[self.queue.frame + 1] = t
 
     def _refresh(self) -> None:
@@ -186,8 +189,9 @@ class WindowBackend:
     def _flush_motion(self) -> None:
         if self._motion is not None and self._motion != self._last_motion:
             x, y = self._motion
-            self._step(((_dev("MOUSEX"), x), (_dev("MOUSEY"), y)), f"move {x} {y}",
-                       self._motion_posted)
+            self.queue.source.append_motion(LiveStep(
+                events=((_dev("MOUSEX"), x), (_dev("MOUSEY"), y)), text=f"move {x} {y}",
+                posted=self._motion_posted))
             self._last_motion = self._motion
         self._motion = None
 
@@ -253,21 +257,15 @@ class WindowBackend:
             self._asked_to_quit.add(gid)
 
     def _resize(self, gid: int, w: int, h: int) -> None:
-        """The user resized the window: reshape its planes (REDRAW follows)."""
-        from vgxsim import gl
-
+        """The user resized the window: a queue step that reshapes its planes and
+        enters REDRAW when delivered (what a replay of the script does)."""
         ctx = self.session.windows.get(gid)
-        if ctx is None or (w, h) == (ctx.width, ctx.height):
+        if ctx is None:
             return
-        previous = gl.winget()
-        gl.winset(gid)
-        x, y = window_of(ctx).origin
-        gl.winposition(x, x + w - 1, y, y + h - 1)
-        if previous != -1:
-            gl.winset(previous)
-        if self.recorder is not None:
-            self.recorder.statement(self.queue.frame, f"# window {gid} resized to {w}x{h} "
-                                    "(not replayed)")
+        if (w, h) == self.resizing.get(gid, (ctx.width, ctx.height)):
+            return  # (SDL reports each size change twice; and our own frames' sizes)
+        self.resizing[gid] = (w, h)
+        self.queue.source.append(LiveStep(resize=(gid, w, h), text=f"resize {w} {h} {gid}"))
 
     def pump(self) -> None:
         """Look at SDL: feeders, closed windows, new input, single-buffered screens."""
@@ -289,10 +287,12 @@ class WindowBackend:
 
     def delivered(self, step) -> None:
         """The queue delivered ``step``: write it to the script, note its latency."""
+        if step.resize is not None and self.resizing.get(step.resize[0]) == step.resize[1:]:
+            del self.resizing[step.resize[0]]
         if self.recorder is not None and getattr(step, "text", ""):
             self.recorder.statement(self.queue.frame, step.text)
         if getattr(step, "posted", 0.0):
-            self.deliveries.append((step.posted, self.queue.frame))
+            self.deliveries.append((step.posted, self.queue.frame, time.perf_counter()))
 
     # -- menus ------------------------------------------------------------------------
     def pointer_screen(self) -> ScreenWindow | None:
@@ -345,11 +345,17 @@ class WindowBackend:
     def latencies(self) -> list[float]:
         """Seconds from each posted input to the screen showing the frame drawn after
         it was delivered."""
+        return [wait + show for wait, show in self.latency_parts()]
+
+    def latency_parts(self) -> list[tuple[float, float]]:
+        """Each latency of :meth:`latencies` in two parts, seconds: from the post to
+        the queue's delivery (waiting for the program's next look at its input), and
+        from the delivery to the screen (drawing the frame, swapbuffers, the blit)."""
         out = []
-        for posted, frame in self.deliveries:
+        for posted, frame, at in self.deliveries:
             t = self.present_times.get(frame + 1)
             if t is not None:
-                out.append(t - posted)
+                out.append((at - posted, t - at))
         return out
 
     def close(self) -> None:

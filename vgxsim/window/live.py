@@ -10,17 +10,21 @@ step is written to the ``--record-events`` script at the frame it was delivered,
 the replay delivers it in the same frame.
 
 Pointer motion is coalesced: all motion between two looks at SDL becomes one ``move
-X Y`` step (MOUSEX then MOUSEY), so a fast drag cannot queue up steps faster than a
-program that reads one a frame takes them.  A blocking ``qread`` with nothing to
-deliver waits for SDL (16 ms at a time, showing single-buffered windows and letting
-SIGINT/SIGTERM/--timeout end the run); with a timer device queued it adds a ``tick``
-step every 1/60 s, the workstation's timer rate.
+X Y`` step (MOUSEX then MOUSEY), and a ``move`` still waiting at the end of the queue's
+source when more motion comes is replaced by the newer position (keeping the older
+post time), so a fast drag cannot queue up steps faster than a program that reads one
+a frame takes them, and the program never draws a position older than the newest it
+was sent (latency: no frame drawn for input already superseded).  A blocking
+``qread`` with nothing to deliver waits for SDL (16 ms at a time, showing
+single-buffered windows and letting SIGINT/SIGTERM/--timeout end the run); with a
+timer device queued it adds a ``tick`` step every 1/60 s, the workstation's timer
+rate.
 """
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from vgxsim.events import EventQueue, EventSource, Step
 from vgxsim.events._devices import TIMERS as D_TIMERS
@@ -55,8 +59,21 @@ class LiveSource(EventSource):
 
     def pop(self) -> Step:
         step = super().pop()
+        if step.resize is not None and step.resize[0] not in self.backend.session.windows:
+            # the user resized a window the program has closed since: nothing to do,
+            # and nothing to record (a replay would find no such window)
+            step = replace(step, resize=None, text="")
         self.backend.delivered(step)
         return step
+
+    def append_motion(self, step: LiveStep) -> None:
+        """Append a ``move`` step, or let it replace an undelivered ``move`` at the
+        end (keeping that one's post time: the latency counts from the older input)."""
+        last = self._steps[-1] if self._steps else None
+        if isinstance(last, LiveStep) and last.text.startswith("move "):
+            self._steps[-1] = replace(step, posted=last.posted or step.posted)
+        else:
+            self._steps.append(step)
 
 
 class LiveEventQueue(EventQueue):

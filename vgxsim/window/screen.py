@@ -59,10 +59,13 @@ class ScreenWindow:
     def size(self) -> tuple[int, int]:
         return tuple(self.window.size)
 
-    def show(self, image: np.ndarray, title: str | None = None) -> float:
-        """Put a bottom-up RGBA (or RGB) frame on the screen; returns the flip time."""
+    def show(self, image: np.ndarray, title: str | None = None,
+             keep_size: bool = False) -> float:
+        """Put a bottom-up RGBA (or RGB) frame on the screen; returns the flip time.
+        The window takes the frame's size unless ``keep_size`` (the user has resized
+        it and the program has not yet been told)."""
         h, w = image.shape[:2]
-        if (w, h) != self.size:
+        if (w, h) != self.size and not keep_size:
             self.window.size = (w, h)
         if title is not None and self.window.title != title:
             self.window.title = title
