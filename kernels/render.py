@@ -76,6 +76,7 @@ from .fragment import (
 )
 from .options import inline_ir, jit
 from .raster import covers, row_span
+from .spans import edge_next, edge_start, span_from
 from .texture import texture_fragment
 from .tiles import (
     TB_VALID,
@@ -121,11 +122,48 @@ def bin_primitives(py0, py1, nprims, band_shift, nbands):
     return counts, items
 
 
+@jit
+def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim, t_col,
+                        t_state, g_kind, g_ref, g_edge, g_box, g_z, g_zlim, g_col, g_state):
+    """Copy the set-up records of ``items[lo:hi]`` into slots ``lo .. hi - 1``.
+
+    After binning, a band's primitives are a sparse, scattered subset of the batch;
+    copied into band order, each band reads its records front to back (a frame of
+    small triangles is otherwise bound by the latency of those scattered reads).
+    The band kernel then runs on ``g_*`` with items ``0, 1, 2, ...``: each entry's
+    kind in ``g_kind``, a triangle's record at its own slot (``g_ref[i] = i``), the
+    other kinds' references unchanged.  Disjoint ``[lo, hi)`` ranges may be filled
+    by different threads.
+    """
+    for i in range(lo, hi):
+        p = items[i]
+        k = p_kind[p]
+        g_kind[i] = k
+        if k != KIND_TRIANGLE:
+            g_ref[i] = p_ref[p]
+            continue
+        t = p_ref[p]
+        g_ref[i] = i
+        for e in range(3):
+            for c in range(3):
+                g_edge[i, e, c] = t_edge[t, e, c]
+        for c in range(4):
+            g_box[i, c] = t_box[t, c]
+        for c in range(5):
+            g_z[i, c] = t_z[t, c]
+        g_zlim[i, 0] = t_zlim[t, 0]
+        g_zlim[i, 1] = t_zlim[t, 1]
+        for ch in range(4):
+            for c in range(3):
+                g_col[i, ch, c] = t_col[t, ch, c]
+        g_state[i] = t_state[t]
+
+
 @inline_ir
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tb, runs, work, tex,
+    step_spans, tb, runs, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -159,6 +197,11 @@ def _triangle_rows(
     dfail = dv[D_DZFAIL]
     smax = dv[D_SMAX]
     narrow = xhi - xlo < NARROW
+    step = step_spans and not edge_mode
+    # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
+    s0, q0, r0, d0, bq0, br0 = edge_start(edge[0, 0], edge[0, 1], edge[0, 2], ylo)
+    s1, q1, r1, d1, bq1, br1 = edge_start(edge[1, 0], edge[1, 1], edge[1, 2], ylo)
+    s2, q2, r2, d2, bq2, br2 = edge_start(edge[2, 0], edge[2, 1], edge[2, 2], ylo)
     tested = 0
     for y in range(ylo, yhi + 1):
         if nruns == 0:
@@ -166,6 +209,12 @@ def _triangle_rows(
         sl = 0
         sr = -1
         solved = False
+        if step:
+            sl, sr = span_from(s0, q0, s1, q1, s2, q2, xlo, xhi)
+            solved = True
+            q0, r0 = edge_next(q0, r0, d0, bq0, br0)
+            q1, r1 = edge_next(q1, r1, d1, bq1, br1)
+            q2, r2 = edge_next(q2, r2, d2, bq2, br2)
         for r in range(nruns):
             full = runs[r, 2] == TILE_FULL
             if full or edge_mode:
@@ -461,7 +510,7 @@ def render_bands(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    edge_mode, general_only, skip_tiles, cover_blocks, work, tex,
+    edge_mode, general_only, skip_tiles, cover_blocks, step_spans, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -528,7 +577,7 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     states[s], derived[s], tables[s],
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, tb, runs, bw, tex,
+                    cover_blocks, step_spans, tb, runs, bw, tex,
                 )
             elif kind == KIND_FRAGMENTS:
                 s = r_state[ref]
