@@ -197,6 +197,7 @@ def _triangle_rows(
     dfail = dv[D_DZFAIL]
     smax = dv[D_SMAX]
     narrow = xhi - xlo < NARROW
+    cbuf = back if st[S_DRAW_BACK] else front  # MODE_COLOUR draws one buffer
     step = step_spans and not edge_mode
     # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
     s0, q0, r0, d0, bq0, br0 = edge_start(edge[0, 0], edge[0, 1], edge[0, 2], ylo)
@@ -241,33 +242,30 @@ def _triangle_rows(
                     continue
             tested += xr - xl + 1
             za = z0 + dzdy * (y - y0)
+            # Planes are indexed [row, column] rather than through row views: a view
+            # costs two (atomic, out-of-line) reference-count updates, several per
+            # row of a small triangle, and the threads share the counts' cache line.
+            uy = np.uintp(y)
             if mode == MODE_ZSTENCIL_ADD:
-                zrow = zbuf[y]
-                srow = sten[y]
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)  # unsigned: no negative-index wraparound: vectorizes
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                    passed = cmp_select(lt, eq, gt, zi, np.int64(zrow[ux]))
-                    sv = np.int64(srow[ux]) + (dpass if passed else dfail)
-                    srow[ux] = min(max(sv, 0), smax)
+                    passed = cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux]))
+                    sv = np.int64(sten[uy, ux]) + (dpass if passed else dfail)
+                    sten[uy, ux] = min(max(sv, 0), smax)
             elif mode == MODE_COLOUR:
-                _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
-                             front, back, zbuf, sten)
+                _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
+                             cbuf, zbuf, sten, front, back, tab)
             elif mode == MODE_ZSTENCIL:
-                zrow = zbuf[y]
-                srow = sten[y]
-                t0 = tab[0]
-                t1 = tab[1]
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                    s = srow[ux]
-                    if cmp_select(lt, eq, gt, zi, np.int64(zrow[ux])):
-                        srow[ux] = t0[s]
+                    sv = sten[uy, ux]
+                    if cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux])):
+                        sten[uy, ux] = tab[0, sv]
                     else:
-                        srow[ux] = t1[s]
+                        sten[uy, ux] = tab[1, sv]
             elif mode == MODE_ZONLY:
-                uy = np.uintp(y)
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
@@ -312,18 +310,17 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour
 
 
 @inline_ir
-def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
-                 front, back, zbuf, sten):
-    """MODE_COLOUR: shaded span with read-only stencil, optional z, simple blend."""
-    buf = back[y] if st[S_DRAW_BACK] else front[y]
+def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
+                 sten, front, back, tab):
+    """MODE_COLOUR: shaded span of row ``uy`` with read-only stencil, optional z,
+    simple blend, into ``cbuf`` (the one colour buffer the state draws)."""
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     lt, eq, gt = cmp_bits(st[S_ZFUNC])
     blend = dv[D_CBLEND]
     wm = st[S_WMPACK] & 0xFFFFFFFF
     keep = ~wm & 0xFFFFFFFF
-    zrow = zbuf[y]
-    srow = sten[y]
+    y = np.int64(uy)
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
     if ztest and blend != CBLEND_GENERAL:
         # Branch-free form for the common passes (z test on; replace, add or SA+MSA
@@ -335,43 +332,44 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
         slt, seq, sgt = cmp_bits(sfunc)
         add = blend == CBLEND_ADD
         if blend == CBLEND_SA_MSA:
-            _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                        lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
-                        wm, keep, buf, zrow, srow)
+            _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
+                        adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
+                        wm, keep, cbuf, zbuf, sten)
         elif dv[D_STENCIL] != 0:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
-                sv = np.int64(srow[ux]) & smask
+                sv = np.int64(sten[uy, ux]) & smask
                 sok = cmp_select(slt, seq, sgt, sref, sv)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zb = np.int64(zrow[ux])
+                zb = np.int64(zbuf[uy, ux])
                 ok = sok & cmp_select(lt, eq, gt, zi, zb)
-                zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+                zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
-                dst = np.int64(buf[ux])
+                dst = np.int64(cbuf[uy, ux])
                 out = add_sat(src, dst) if add else src
-                buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+                cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
         else:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zb = np.int64(zrow[ux])
+                zb = np.int64(zbuf[uy, ux])
                 ok = cmp_select(lt, eq, gt, zi, zb)
-                zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+                zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
-                dst = np.int64(buf[ux])
+                dst = np.int64(cbuf[uy, ux])
                 out = add_sat(src, dst) if add else src
-                buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+                cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
         return
     _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                       front, back, zbuf, sten)
 
 
 @jit
-def _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, keep, buf, zrow, srow):
+def _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, keep, cbuf, zbuf,
+                sten):
     """MODE_COLOUR with blendfunction(BF_SA, BF_MSA) and the z test on: the
     branch-free span loop of :func:`_colour_span` with the alpha blend computed
     component by component (compiled out of line: keeps the band kernel's compile
@@ -379,24 +377,24 @@ def _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
     if stest:
         for x in range(xl, xr + 1):
             ux = np.uintp(x)
-            sok = cmp_select(slt, seq, sgt, sref, np.int64(srow[ux]) & smask)
+            sok = cmp_select(slt, seq, sgt, sref, np.int64(sten[uy, ux]) & smask)
             zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-            zb = np.int64(zrow[ux])
+            zb = np.int64(zbuf[uy, ux])
             ok = sok & cmp_select(lt, eq, gt, zi, zb)
-            zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
-            dst = np.int64(buf[ux])
+            zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
+            dst = np.int64(cbuf[uy, ux])
             out = blend_sa_msa(x - x0, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst)
-            buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+            cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
     else:
         for x in range(xl, xr + 1):
             ux = np.uintp(x)
             zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-            zb = np.int64(zrow[ux])
+            zb = np.int64(zbuf[uy, ux])
             ok = cmp_select(lt, eq, gt, zi, zb)
-            zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
-            dst = np.int64(buf[ux])
+            zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
+            dst = np.int64(cbuf[uy, ux])
             out = blend_sa_msa(x - x0, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst)
-            buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+            cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
 
 
 @jit
@@ -567,15 +565,26 @@ def render_bands(
         y_hi = min(y_lo + band_h, height) - 1
         tb[:, TB_VALID] = 0  # bounds are found again in each band, on first use
         bw = work[b]
+        # The state's rows, taken again only when the state changes (a view costs
+        # reference-count updates; runs of primitives share a state).
+        cur = -1
+        st = states[0]
+        dv = derived[0]
+        tab = tables[0]
         for i in range(starts[b], starts[b + 1]):
             p = items[i]
             kind = p_kind[p]
             ref = p_ref[p]
             if kind == KIND_TRIANGLE:
                 s = t_state[ref]
+                if s != cur:
+                    cur = s
+                    st = states[s]
+                    dv = derived[s]
+                    tab = tables[s]
                 _triangle_rows(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
-                    states[s], derived[s], tables[s],
+                    st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
                     cover_blocks, step_spans, tb, runs, bw, tex,
                 )
