@@ -76,7 +76,7 @@ from .fragment import (
 )
 from .options import inline_ir, jit
 from .raster import covers, row_span
-from .spans import edge_next, edge_start, span_from
+from .spans import edge_next, edge_start_at, span_from
 from .texture import texture_fragment
 from .tiles import (
     TB_VALID,
@@ -180,7 +180,6 @@ def _triangle_rows(
         runs[0, 1] = xhi
         runs[0, 2] = TILE_PARTIAL
         nruns = 1
-    edge = t_edge[t]
     z0 = t_z[t, 0]
     x0 = t_z[t, 1]
     y0 = t_z[t, 2]
@@ -200,9 +199,9 @@ def _triangle_rows(
     cbuf = back if st[S_DRAW_BACK] else front  # MODE_COLOUR draws one buffer
     step = step_spans and not edge_mode
     # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
-    s0, q0, r0, d0, bq0, br0 = edge_start(edge[0, 0], edge[0, 1], edge[0, 2], ylo)
-    s1, q1, r1, d1, bq1, br1 = edge_start(edge[1, 0], edge[1, 1], edge[1, 2], ylo)
-    s2, q2, r2, d2, bq2, br2 = edge_start(edge[2, 0], edge[2, 1], edge[2, 2], ylo)
+    s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
+    s1, q1, r1, d1, bq1, br1 = edge_start_at(t_edge, t, 1, ylo)
+    s2, q2, r2, d2, bq2, br2 = edge_start_at(t_edge, t, 2, ylo)
     tested = 0
     for y in range(ylo, yhi + 1):
         if nruns == 0:
@@ -224,6 +223,7 @@ def _triangle_rows(
             else:
                 if not solved:
                     solved = True
+                    edge = t_edge[t]  # (step_spans off: the hot path takes no view)
                     if narrow:
                         # Small triangles: scan the few pixel centres of the row with
                         # the edge functions (multiply-adds) instead of solving for the
@@ -272,7 +272,7 @@ def _triangle_rows(
                     if cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux])):
                         zbuf[uy, ux] = wrap_z24(zi)
             else:
-                _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
+                _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colour,
                              edge_mode and not full, st, dv, tab, front, back, zbuf, sten, tex)
     work[WORK_FRAGMENTS] += tested
     if dv[D_STENCIL] != 0 and mode != MODE_COLOUR:
@@ -282,7 +282,7 @@ def _triangle_rows(
 
 
 @jit
-def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
+def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colour,
                  edge_mode, st, dv, tab, front, back, zbuf, sten, tex):
     """The general per-fragment path for one row (any state; the edge-function
     rasterizer when ``edge_mode``).  Compiled out of line: it is the rare path, and
@@ -290,6 +290,7 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour
     ``tex`` = (t_tex, info, env_colour, texels): the texture stage's planes and
     table, read when the state's S_TEXTURE slot is non-zero."""
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
+    edge = t_edge[t]
     slot = st[S_TEXTURE] - 1
     for x in range(xl, xr + 1):
         if edge_mode and not covers(edge, x, y):

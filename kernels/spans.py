@@ -33,6 +33,13 @@ def edge_start(a, b, k, y):
 
 
 @inline
+def edge_start_at(t_edge, t, e, y):
+    """:func:`edge_start` of edge ``e`` of set-up record ``t`` (``t_edge`` (T, 3, 3)
+    int64), read in place: no array view, so no reference-count update."""
+    return edge_start(t_edge[t, e, 0], t_edge[t, e, 1], t_edge[t, e, 2], y)
+
+
+@inline
 def edge_next(q, r, d, bq, br):
     """The edge's ``(q, r)`` one row further down."""
     r += br
