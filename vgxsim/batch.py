@@ -65,6 +65,7 @@ PARALLEL_SETUP = 20_000  # triangles in one call above which set-up runs on all 
 PARALLEL_FRONT = 4_096  # the same for the fused front end (add_object_triangles)
 MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
 GATHER_MIN = 4096  # triangles in a flush from which records are copied into band order
+GATHER_MAX = 1 << 20  # binned entries above which they are not (the copy's memory)
 
 
 def _cuts(n: int, parts: int) -> list[tuple[int, int]]:
@@ -116,7 +117,8 @@ class CommandBatch:
         (vgxsim/kernels/spans.py) instead of solved per row; on by default, the
         same spans either way (a class attribute like the two above).
     band_records : bool
-        Before a flush of many triangles (``GATHER_MIN``) in several bands, copy
+        Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
+        binned entries, which bounds the copy's memory) in several bands, copy
         their set-up records into band order so that each band reads its own
         front to back (kernels/render.py gather_band_records); on by default, a
         switch that changes nothing drawn.
@@ -580,7 +582,8 @@ class CommandBatch:
         starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
         work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
         textured = bool(states[:, S_TEXTURE].any())
-        if (self.band_records and not textured and nbands > 1 and self.ntris >= GATHER_MIN):
+        if (self.band_records and not textured and nbands > 1 and self.ntris >= GATHER_MIN
+                and items.shape[0] <= GATHER_MAX):
             items, prims, records = self._band_order(items, nthreads)
         else:
             prims, records = (self.p_kind, self.p_ref), self._records()
