@@ -601,9 +601,12 @@ class CommandBatch:
             # The kernel releases the GIL: plain threads give band parallelism without
             # Numba's parallel=True compile cost (a large part of cold start).
             # One task per band (render_bands(b, nbands) renders band b alone): the
-            # pool hands bands to whichever thread is free.
+            # pool hands bands to whichever thread is free, the busiest bands (most
+            # primitives) first, so that a heavy band is not the last one started
+            # while the other thread idles (bands are disjoint: order changes nothing).
             pool = threads.pool(nthreads)
-            futures = [pool.submit(render_bands, b, nbands, *args) for b in range(nbands)]
+            order = np.argsort(-np.diff(starts), kind="stable").tolist()
+            futures = [pool.submit(render_bands, b, nbands, *args) for b in order]
             for f in futures:
                 f.result()
         self.counters += work.sum(axis=0)
