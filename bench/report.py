@@ -18,7 +18,9 @@ Everything is measured side by side in one run and medians are quoted:
 * a dense shadow scene (bench/dense_scene.py: 20 spheres over a floor, two lights,
   about 42 k triangles) through the library path, beside Mesa llvmpipe;
 * the work counters (CommandBatch.work()) of each workload, and the time of the
-  shadow frames with exact work skipping switched off, measured beside.
+  shadow frames with exact work skipping switched off, measured beside;
+* the 10-pixel triangles and the dense scene with the raster switches (spans stepped
+  row to row, records copied into band order) on and off, alternating.
 """
 
 from __future__ import annotations
@@ -124,6 +126,58 @@ def small_triangle_split(rounds: int) -> dict:
     finally:
         CommandBatch.flush = real_flush
         geometry.FUSED_FRONT = keep
+        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    return out
+
+
+RASTER_SWITCHES = ("step_spans", "band_records")  # CommandBatch switches of issue 7
+
+
+def raster_switches(rounds: int) -> dict:
+    """The 10-pixel triangles and the dense scene with the raster switches
+    (``RASTER_SWITCHES``: spans stepped row to row, records copied into band order)
+    all on and all off, alternating round by round on 1 and 2 threads: wall time and
+    the process CPU time spent in CommandBatch.flush (the raster).
+
+    Returns {(workload, threads, on): {"wall", "raster_cpu"}} in s.
+    """
+    spent = [0.0]
+    real_flush = CommandBatch.flush
+
+    def timed_flush(self, *a, **k):
+        t = time.process_time()
+        try:
+            return real_flush(self, *a, **k)
+        finally:
+            spent[0] += time.process_time() - t
+
+    passes, _, _ = dense_scene.build()
+    runs = {"small_triangles": scenes.small_triangles()[0],
+            "dense_scene": dense_scene.vgxsim_frame(passes)[0]}
+    out: dict = {}
+    CommandBatch.flush = timed_flush
+    try:
+        for threads in (1, 2):
+            numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+            for name, run in runs.items():
+                samples: dict = {True: [], False: []}
+                for r in range(rounds + 1):
+                    for on in (True, False):
+                        for sw in RASTER_SWITCHES:
+                            setattr(CommandBatch, sw, on)
+                        spent[0] = 0.0
+                        w = time.perf_counter()
+                        run()
+                        if r:
+                            samples[on].append((time.perf_counter() - w, spent[0]))
+                for on, rows in samples.items():
+                    a = np.array(rows)
+                    out[(name, threads, on)] = {"wall": float(np.median(a[:, 0])),
+                                                "raster_cpu": float(np.median(a[:, 1]))}
+    finally:
+        CommandBatch.flush = real_flush
+        for sw in RASTER_SWITCHES:
+            setattr(CommandBatch, sw, True)
         numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
     return out
 
@@ -234,6 +288,7 @@ def main(argv=None) -> int:
     rounds = 3 if args.quick else 7
     rates, work = vgxsim_rates(rounds)
     split = small_triangle_split(rounds)
+    switched = raster_switches(rounds)
     mesa = {} if args.no_mesa else mesa_rates()
     cold, warm = start_times()
     frame = heidmann_frame(rounds)
@@ -277,6 +332,18 @@ def main(argv=None) -> int:
               f"{v['raster_cpu'] * 1e3:11.1f} {0.2 / v['wall']:12.2f}")
     raw["small_triangle_split"] = {f"{t}@{'fused' if f else 'unfused'}": v
                                    for (t, f), v in split.items()}
+    print(f"\nraster switches ({', '.join(RASTER_SWITCHES)}) all on / all off, alternating "
+          "(ms; raster CPU = process time in flush):")
+    print(f"{'workload':18s} {'threads':>8s} {'wall on':>9s} {'wall off':>9s} "
+          f"{'raster CPU on':>14s} {'raster CPU off':>15s} {'off/on':>7s}")
+    for name in ("small_triangles", "dense_scene"):
+        for threads in (1, 2):
+            on, off = switched[(name, threads, True)], switched[(name, threads, False)]
+            print(f"{name:18s} {threads:8d} {on['wall'] * 1e3:9.1f} {off['wall'] * 1e3:9.1f} "
+                  f"{on['raster_cpu'] * 1e3:14.1f} {off['raster_cpu'] * 1e3:15.1f} "
+                  f"{off['raster_cpu'] / max(on['raster_cpu'], 1e-9):6.2f}x")
+    raw["raster_switches"] = {f"{n}@{t}@{'on' if o else 'off'}": v
+                              for (n, t, o), v in switched.items()}
     if mesa.get(1, {}).get("renderer"):
         print(f"\nMesa renderer: {mesa[1]['renderer']}")
     elif mesa:

@@ -76,6 +76,7 @@ from .fragment import (
 )
 from .options import inline_ir, jit
 from .raster import covers, row_span
+from .spans import edge_next, edge_start_at, span_from
 from .texture import texture_fragment
 from .tiles import (
     TB_VALID,
@@ -121,11 +122,48 @@ def bin_primitives(py0, py1, nprims, band_shift, nbands):
     return counts, items
 
 
+@jit
+def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim, t_col,
+                        t_state, g_kind, g_ref, g_edge, g_box, g_z, g_zlim, g_col, g_state):
+    """Copy the set-up records of ``items[lo:hi]`` into slots ``lo .. hi - 1``.
+
+    After binning, a band's primitives are a sparse, scattered subset of the batch;
+    copied into band order, each band reads its records front to back (a frame of
+    small triangles is otherwise bound by the latency of those scattered reads).
+    The band kernel then runs on ``g_*`` with items ``0, 1, 2, ...``: each entry's
+    kind in ``g_kind``, a triangle's record at its own slot (``g_ref[i] = i``), the
+    other kinds' references unchanged.  Disjoint ``[lo, hi)`` ranges may be filled
+    by different threads.
+    """
+    for i in range(lo, hi):
+        p = items[i]
+        k = p_kind[p]
+        g_kind[i] = k
+        if k != KIND_TRIANGLE:
+            g_ref[i] = p_ref[p]
+            continue
+        t = p_ref[p]
+        g_ref[i] = i
+        for e in range(3):
+            for c in range(3):
+                g_edge[i, e, c] = t_edge[t, e, c]
+        for c in range(4):
+            g_box[i, c] = t_box[t, c]
+        for c in range(5):
+            g_z[i, c] = t_z[t, c]
+        g_zlim[i, 0] = t_zlim[t, 0]
+        g_zlim[i, 1] = t_zlim[t, 1]
+        for ch in range(4):
+            for c in range(3):
+                g_col[i, ch, c] = t_col[t, ch, c]
+        g_state[i] = t_state[t]
+
+
 @inline_ir
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tb, runs, work, tex,
+    step_spans, tb, runs, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -142,7 +180,6 @@ def _triangle_rows(
         runs[0, 1] = xhi
         runs[0, 2] = TILE_PARTIAL
         nruns = 1
-    edge = t_edge[t]
     z0 = t_z[t, 0]
     x0 = t_z[t, 1]
     y0 = t_z[t, 2]
@@ -159,6 +196,12 @@ def _triangle_rows(
     dfail = dv[D_DZFAIL]
     smax = dv[D_SMAX]
     narrow = xhi - xlo < NARROW
+    cbuf = back if st[S_DRAW_BACK] else front  # MODE_COLOUR draws one buffer
+    step = step_spans and not edge_mode
+    # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
+    s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
+    s1, q1, r1, d1, bq1, br1 = edge_start_at(t_edge, t, 1, ylo)
+    s2, q2, r2, d2, bq2, br2 = edge_start_at(t_edge, t, 2, ylo)
     tested = 0
     for y in range(ylo, yhi + 1):
         if nruns == 0:
@@ -166,6 +209,12 @@ def _triangle_rows(
         sl = 0
         sr = -1
         solved = False
+        if step:
+            sl, sr = span_from(s0, q0, s1, q1, s2, q2, xlo, xhi)
+            solved = True
+            q0, r0 = edge_next(q0, r0, d0, bq0, br0)
+            q1, r1 = edge_next(q1, r1, d1, bq1, br1)
+            q2, r2 = edge_next(q2, r2, d2, bq2, br2)
         for r in range(nruns):
             full = runs[r, 2] == TILE_FULL
             if full or edge_mode:
@@ -174,6 +223,7 @@ def _triangle_rows(
             else:
                 if not solved:
                     solved = True
+                    edge = t_edge[t]  # (step_spans off: the hot path takes no view)
                     if narrow:
                         # Small triangles: scan the few pixel centres of the row with
                         # the edge functions (multiply-adds) instead of solving for the
@@ -192,40 +242,37 @@ def _triangle_rows(
                     continue
             tested += xr - xl + 1
             za = z0 + dzdy * (y - y0)
+            # Planes are indexed [row, column] rather than through row views: a view
+            # costs two (atomic, out-of-line) reference-count updates, several per
+            # row of a small triangle, and the threads share the counts' cache line.
+            uy = np.uintp(y)
             if mode == MODE_ZSTENCIL_ADD:
-                zrow = zbuf[y]
-                srow = sten[y]
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)  # unsigned: no negative-index wraparound: vectorizes
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                    passed = cmp_select(lt, eq, gt, zi, np.int64(zrow[ux]))
-                    sv = np.int64(srow[ux]) + (dpass if passed else dfail)
-                    srow[ux] = min(max(sv, 0), smax)
+                    passed = cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux]))
+                    sv = np.int64(sten[uy, ux]) + (dpass if passed else dfail)
+                    sten[uy, ux] = min(max(sv, 0), smax)
             elif mode == MODE_COLOUR:
-                _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
-                             front, back, zbuf, sten)
+                _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
+                             cbuf, zbuf, sten, front, back, tab)
             elif mode == MODE_ZSTENCIL:
-                zrow = zbuf[y]
-                srow = sten[y]
-                t0 = tab[0]
-                t1 = tab[1]
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                    s = srow[ux]
-                    if cmp_select(lt, eq, gt, zi, np.int64(zrow[ux])):
-                        srow[ux] = t0[s]
+                    sv = sten[uy, ux]
+                    if cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux])):
+                        sten[uy, ux] = tab[0, sv]
                     else:
-                        srow[ux] = t1[s]
+                        sten[uy, ux] = tab[1, sv]
             elif mode == MODE_ZONLY:
-                uy = np.uintp(y)
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
                     if cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux])):
                         zbuf[uy, ux] = wrap_z24(zi)
             else:
-                _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
+                _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colour,
                              edge_mode and not full, st, dv, tab, front, back, zbuf, sten, tex)
     work[WORK_FRAGMENTS] += tested
     if dv[D_STENCIL] != 0 and mode != MODE_COLOUR:
@@ -235,7 +282,7 @@ def _triangle_rows(
 
 
 @jit
-def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour,
+def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colour,
                  edge_mode, st, dv, tab, front, back, zbuf, sten, tex):
     """The general per-fragment path for one row (any state; the edge-function
     rasterizer when ``edge_mode``).  Compiled out of line: it is the rare path, and
@@ -243,6 +290,7 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour
     ``tex`` = (t_tex, info, env_colour, texels): the texture stage's planes and
     table, read when the state's S_TEXTURE slot is non-zero."""
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
+    edge = t_edge[t]
     slot = st[S_TEXTURE] - 1
     for x in range(xl, xr + 1):
         if edge_mode and not covers(edge, x, y):
@@ -263,18 +311,17 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, edge, colour
 
 
 @inline_ir
-def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
-                 front, back, zbuf, sten):
-    """MODE_COLOUR: shaded span with read-only stencil, optional z, simple blend."""
-    buf = back[y] if st[S_DRAW_BACK] else front[y]
+def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
+                 sten, front, back, tab):
+    """MODE_COLOUR: shaded span of row ``uy`` with read-only stencil, optional z,
+    simple blend, into ``cbuf`` (the one colour buffer the state draws)."""
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     lt, eq, gt = cmp_bits(st[S_ZFUNC])
     blend = dv[D_CBLEND]
     wm = st[S_WMPACK] & 0xFFFFFFFF
     keep = ~wm & 0xFFFFFFFF
-    zrow = zbuf[y]
-    srow = sten[y]
+    y = np.int64(uy)
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
     if ztest and blend != CBLEND_GENERAL:
         # Branch-free form for the common passes (z test on; replace, add or SA+MSA
@@ -286,43 +333,44 @@ def _colour_span(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
         slt, seq, sgt = cmp_bits(sfunc)
         add = blend == CBLEND_ADD
         if blend == CBLEND_SA_MSA:
-            _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                        lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
-                        wm, keep, buf, zrow, srow)
+            _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
+                        adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
+                        wm, keep, cbuf, zbuf, sten)
         elif dv[D_STENCIL] != 0:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
-                sv = np.int64(srow[ux]) & smask
+                sv = np.int64(sten[uy, ux]) & smask
                 sok = cmp_select(slt, seq, sgt, sref, sv)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zb = np.int64(zrow[ux])
+                zb = np.int64(zbuf[uy, ux])
                 ok = sok & cmp_select(lt, eq, gt, zi, zb)
-                zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+                zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
-                dst = np.int64(buf[ux])
+                dst = np.int64(cbuf[uy, ux])
                 out = add_sat(src, dst) if add else src
-                buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+                cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
         else:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zb = np.int64(zrow[ux])
+                zb = np.int64(zbuf[uy, ux])
                 ok = cmp_select(lt, eq, gt, zi, zb)
-                zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
+                zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
-                dst = np.int64(buf[ux])
+                dst = np.int64(cbuf[uy, ux])
                 out = add_sat(src, dst) if add else src
-                buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+                cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
         return
     _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                       front, back, zbuf, sten)
 
 
 @jit
-def _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, keep, buf, zrow, srow):
+def _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, keep, cbuf, zbuf,
+                sten):
     """MODE_COLOUR with blendfunction(BF_SA, BF_MSA) and the z test on: the
     branch-free span loop of :func:`_colour_span` with the alpha blend computed
     component by component (compiled out of line: keeps the band kernel's compile
@@ -330,24 +378,24 @@ def _alpha_span(xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
     if stest:
         for x in range(xl, xr + 1):
             ux = np.uintp(x)
-            sok = cmp_select(slt, seq, sgt, sref, np.int64(srow[ux]) & smask)
+            sok = cmp_select(slt, seq, sgt, sref, np.int64(sten[uy, ux]) & smask)
             zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-            zb = np.int64(zrow[ux])
+            zb = np.int64(zbuf[uy, ux])
             ok = sok & cmp_select(lt, eq, gt, zi, zb)
-            zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
-            dst = np.int64(buf[ux])
+            zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
+            dst = np.int64(cbuf[uy, ux])
             out = blend_sa_msa(x - x0, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst)
-            buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+            cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
     else:
         for x in range(xl, xr + 1):
             ux = np.uintp(x)
             zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-            zb = np.int64(zrow[ux])
+            zb = np.int64(zbuf[uy, ux])
             ok = cmp_select(lt, eq, gt, zi, zb)
-            zrow[ux] = wrap_z24(zi) if (ok & zwrite) else zb
-            dst = np.int64(buf[ux])
+            zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
+            dst = np.int64(cbuf[uy, ux])
             out = blend_sa_msa(x - x0, ra, ga, ba, aa, rdx, gdx, bdx, adx, dst)
-            buf[ux] = ((dst & keep) | (out & wm)) if ok else dst
+            cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
 
 
 @jit
@@ -461,7 +509,7 @@ def render_bands(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    edge_mode, general_only, skip_tiles, cover_blocks, work, tex,
+    edge_mode, general_only, skip_tiles, cover_blocks, step_spans, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -518,17 +566,28 @@ def render_bands(
         y_hi = min(y_lo + band_h, height) - 1
         tb[:, TB_VALID] = 0  # bounds are found again in each band, on first use
         bw = work[b]
+        # The state's rows, taken again only when the state changes (a view costs
+        # reference-count updates; runs of primitives share a state).
+        cur = -1
+        st = states[0]
+        dv = derived[0]
+        tab = tables[0]
         for i in range(starts[b], starts[b + 1]):
             p = items[i]
             kind = p_kind[p]
             ref = p_ref[p]
             if kind == KIND_TRIANGLE:
                 s = t_state[ref]
+                if s != cur:
+                    cur = s
+                    st = states[s]
+                    dv = derived[s]
+                    tab = tables[s]
                 _triangle_rows(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
-                    states[s], derived[s], tables[s],
+                    st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, tb, runs, bw, tex,
+                    cover_blocks, step_spans, tb, runs, bw, tex,
                 )
             elif kind == KIND_FRAGMENTS:
                 s = r_state[ref]

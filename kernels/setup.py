@@ -22,15 +22,17 @@ from .options import inline, inline_ir, jit
 
 
 @inline
-def _edge(xi, yi, xj, yj, out, e):
-    """Edge i->j of a counter-clockwise triangle into out[e] = (A, B, K)."""
+def _edge(xi, yi, xj, yj, t_edge, n, e):
+    """Edge i->j of a counter-clockwise triangle into t_edge[n, e] = (A, B, K).
+    (Written in place, not through a view of record n: a view costs two atomic
+    reference-count updates, which set-up on two threads would contend for.)"""
     dx = xj - xi
     dy = yj - yi
     inclusive = dy < 0 or (dy == 0 and dx > 0)
     bias = 1 if inclusive else 0
-    out[e, 0] = -dy * ONE
-    out[e, 1] = dx * ONE
-    out[e, 2] = dy * xi - dx * yi + bias - 1
+    t_edge[n, e, 0] = -dy * ONE
+    t_edge[n, e, 1] = dx * ONE
+    t_edge[n, e, 2] = dy * xi - dx * yi + bias - 1
 
 
 DEAD_Y0 = 1 << 40  # first row of a dead record: beyond any band
@@ -139,13 +141,13 @@ def _setup_one(xf, yf, zw, col, tris, src, flat_col, state, cull, flat, want_col
     det2 = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
     # Edges of the counter-clockwise version.
     if det2 > 0:
-        _edge(ax, ay, bx, by, t_edge[n], 0)
-        _edge(bx, by, cx, cy, t_edge[n], 1)
-        _edge(cx, cy, ax, ay, t_edge[n], 2)
+        _edge(ax, ay, bx, by, t_edge, n, 0)
+        _edge(bx, by, cx, cy, t_edge, n, 1)
+        _edge(cx, cy, ax, ay, t_edge, n, 2)
     else:
-        _edge(ax, ay, cx, cy, t_edge[n], 0)
-        _edge(cx, cy, bx, by, t_edge[n], 1)
-        _edge(bx, by, ax, ay, t_edge[n], 2)
+        _edge(ax, ay, cx, cy, t_edge, n, 0)
+        _edge(cx, cy, bx, by, t_edge, n, 1)
+        _edge(bx, by, ax, ay, t_edge, n, 2)
     xmin = min(ax, min(bx, cx))
     xmax = max(ax, max(bx, cx))
     t_box[n, 0] = _ceil_div_one(xmin)

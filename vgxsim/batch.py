@@ -15,7 +15,7 @@ import numpy as np
 from vgxsim import coldstart, threads
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
-from vgxsim.kernels.render import bin_primitives, render_bands
+from vgxsim.kernels.render import bin_primitives, gather_band_records, render_bands
 from vgxsim.kernels.setup import setup_triangles, setup_triangles_states
 from vgxsim.kernels.texture import setup_texture_planes
 from vgxsim.state.codes import (
@@ -64,6 +64,8 @@ def band_shift(height: int, nthreads: int) -> int:
 PARALLEL_SETUP = 20_000  # triangles in one call above which set-up runs on all threads
 PARALLEL_FRONT = 4_096  # the same for the fused front end (add_object_triangles)
 MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
+GATHER_MIN = 4096  # triangles in a flush from which records are copied into band order
+GATHER_MAX = 1 << 20  # binned entries above which they are not (the copy's memory)
 
 
 def _cuts(n: int, parts: int) -> list[tuple[int, int]]:
@@ -110,6 +112,16 @@ class CommandBatch:
         whose depth bounds fail the z test for a whole triangle; run tiles fully
         inside a triangle without edge tests.  Switching either off changes no pixel.
         Class attributes: set them on ``CommandBatch`` to switch every batch.
+    step_spans : bool
+        Row spans of a triangle carried from row to row by exact integer steps
+        (vgxsim/kernels/spans.py) instead of solved per row; on by default, the
+        same spans either way (a class attribute like the two above).
+    band_records : bool
+        Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
+        binned entries, which bounds the copy's memory) in several bands, copy
+        their set-up records into band order so that each band reads its own
+        front to back (kernels/render.py gather_band_records); on by default, a
+        switch that changes nothing drawn.
     counters : ndarray, shape (4,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -119,6 +131,8 @@ class CommandBatch:
 
     skip_tiles = True
     cover_blocks = True
+    step_spans = True
+    band_records = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -159,6 +173,7 @@ class CommandBatch:
         self.r_state = np.zeros(16, np.int64)
         self.c_vals = np.zeros((16, 4), np.int64)
         self.c_state = np.zeros(16, np.int64)
+        self.g_kind = np.zeros(0, np.int64)  # band-ordered copies (_band_order)
 
     def _grow_records(self, end: int) -> None:
         """Grow the set-up record arrays to hold ``end`` records (capacity is kept
@@ -173,6 +188,24 @@ class CommandBatch:
     def _records(self) -> tuple:
         """The set-up record arrays, in the order the set-up kernels write them."""
         return (self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state)
+
+    def _band_order(self, items: np.ndarray, nthreads: int) -> tuple:
+        """The binned primitives with their triangle records copied into band order
+        (``band_records``): items ``0 .. n - 1``, the kinds and references, and the
+        record arrays, for :func:`render_bands` in place of the batch's own."""
+        n = items.shape[0]
+        if self.g_kind.shape[0] < n:
+            cap = max(n, 2 * self.g_kind.shape[0], 64)
+            self.g_iota = np.arange(cap, dtype=np.int64)
+            self.g_kind = np.empty(cap, np.int64)
+            self.g_ref = np.empty(cap, np.int64)
+            self.g_records = tuple(np.empty((cap,) + a.shape[1:], a.dtype)
+                                   for a in self._records())
+        prims = (self.g_kind, self.g_ref)
+        # Chunks of items are disjoint slots: they copy on the worker threads.
+        _run_chunks(nthreads > 1, nthreads, _gather_range(items, self, prims),
+                    _cuts(n, nthreads))
+        return self.g_iota[:n], prims, self.g_records
 
     def _reset(self) -> None:
         """Empty the batch (counters only; the arrays keep their capacity)."""
@@ -548,13 +581,18 @@ class CommandBatch:
         nbands = (height + (1 << shift) - 1) >> shift
         starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
         work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
+        textured = bool(states[:, S_TEXTURE].any())
+        if (self.band_records and not textured and nbands > 1 and self.ntris >= GATHER_MIN
+                and items.shape[0] <= GATHER_MAX):
+            items, prims, records = self._band_order(items, nthreads)
+        else:
+            prims, records = (self.p_kind, self.p_ref), self._records()
         args = (
-            starts, items, shift, height, self.p_kind, self.p_ref,
-            self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state,
+            starts, items, shift, height, *prims, *records,
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
-            self.skip_tiles, self.cover_blocks, work, (self.t_tex, *tex_table),
+            self.skip_tiles, self.cover_blocks, self.step_spans, work, (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
         if nthreads == 1:
@@ -563,9 +601,12 @@ class CommandBatch:
             # The kernel releases the GIL: plain threads give band parallelism without
             # Numba's parallel=True compile cost (a large part of cold start).
             # One task per band (render_bands(b, nbands) renders band b alone): the
-            # pool hands bands to whichever thread is free.
+            # pool hands bands to whichever thread is free, the busiest bands (most
+            # primitives) first, so that a heavy band is not the last one started
+            # while the other thread idles (bands are disjoint: order changes nothing).
             pool = threads.pool(nthreads)
-            futures = [pool.submit(render_bands, b, nbands, *args) for b in range(nbands)]
+            order = np.argsort(-np.diff(starts), kind="stable").tolist()
+            futures = [pool.submit(render_bands, b, nbands, *args) for b in order]
             for f in futures:
                 f.result()
         self.counters += work.sum(axis=0)
@@ -574,6 +615,12 @@ class CommandBatch:
 
 
 _ADD_TRIANGLES = CommandBatch.add_triangles
+
+
+def _gather_range(items, batch: CommandBatch, prims):
+    """``f(lo, hi)`` copying the records of ``items[lo:hi]`` (for _run_chunks)."""
+    args = (batch.p_kind, batch.p_ref, *batch._records(), *prims, *batch.g_records)
+    return lambda lo, hi: gather_band_records(items, lo, hi, *args)
 
 
 def _texture_table(states: np.ndarray):
