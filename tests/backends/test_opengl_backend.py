@@ -304,3 +304,26 @@ def test_merging_draws_gives_the_planes_of_separate_draws(monkeypatch, mode):
     for s0, s1 in zip(out[0][1], out[1][1], strict=True):
         assert np.array_equal(s0, s1)
     assert out[0][0][..., :3].any()
+
+
+def test_closing_another_surface_mid_batch_keeps_this_one_current(gl_win):
+    # A surface's close also runs from __del__, whenever the garbage collector
+    # runs: between this window's begin and its draws it must leave this window's
+    # context current (once, a full-suite run failed here with PyOpenGL's "no
+    # valid context").
+    from vgxsim.backends.opengl.surface import Surface
+    from vgxsim.state.planes import Framebuffer
+
+    ctx = gl_win(W, H)
+    other = gl_win(4, 4)
+    session.windows[1] = ctx  # the first window is the current one again
+    surface = Surface(ctx.fb)
+    doomed = Surface(other.fb)
+    surface.begin()
+    doomed.close()
+    cpack(0xFF0000FF)
+    ctx.draw_arrays("polygon", square(0, 0, W, H))
+    ctx.flush()  # a flush of the window's own batch after the close
+    assert isinstance(Framebuffer, type)
+    surface.close()
+    assert np.all(ctx.fb.front == 0xFF0000FF)

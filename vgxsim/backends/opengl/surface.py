@@ -294,7 +294,15 @@ class Surface(mesa.MesaPeer):
         GL.glDisableClientState(GL.GL_TEXTURE_COORD_ARRAY)
 
     def close(self) -> None:
-        """Free the framebuffer object and destroy the context."""
+        """Free the framebuffer object and destroy the context.
+
+        Freeing the framebuffer object needs this context current; the context
+        that was current before is made current again afterwards, because close
+        also runs from ``__del__``, whenever the garbage collector chooses, which
+        may be between another surface's ``begin`` and its draws (that surface's
+        next GL call would then find no context).
+        """
+        before = mesa._last_peer
         if self._ctx is not None and getattr(self, "_fbo", 0):
             try:
                 GL, _ = mesa._import_gl()
@@ -305,3 +313,5 @@ class Surface(mesa.MesaPeer):
                 pass
             self._fbo = 0
         super().close()
+        if before is not None and before is not self and before._ctx is not None:
+            before._make_current()
