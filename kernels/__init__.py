@@ -20,3 +20,9 @@ happens in the layers above.  Stage by stage:
 Only relative imports are used here: this folder must never be importable as a
 top-level ``kernels`` module (a different PyPI package has that name).
 """
+
+# Before any kernel module is imported (their dispatchers pick a cache locator when
+# decorated): every cached kernel is keyed by the content of all kernel sources.
+from . import cache_stamp as _cache_stamp
+
+_cache_stamp.install()
