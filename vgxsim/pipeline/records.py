@@ -63,6 +63,10 @@ class DrawState(NamedTuple):
         The depth-cue ramp when depthcue(TRUE) in RGB mode, else None.
     resetls : bool
         Whether the line style restarts at each line (resetls(3G)).
+    texgen_eye : (modelview (4, 4), normal matrix (3, 3)) or None
+        The eye space that TG_CONTOUR / TG_SPHEREMAP generation reads (texgen(3G)),
+        when the bound texture generates a coordinate there, else None.  It changes
+        only with the matrices, so the record's ``mvp`` identity stands for it.
     """
 
     raster: RasterState
@@ -76,6 +80,18 @@ class DrawState(NamedTuple):
     fog: FogState | None = None
     depthcue: DepthCue | None = None
     resetls: bool = True
+    texgen_eye: tuple | None = None
+
+
+def texgen_eye(ctx, rs: RasterState) -> tuple | None:
+    """(modelview, normal matrix) when the bound texture's texgen works in eye space."""
+    if rs.texture == 0:
+        return None
+    from vgxsim.state.textures import binding
+
+    if not binding(rs.texture).texgen.eye_space:
+        return None
+    return ctx.matrices.modelview_matrix(), ctx.matrices.normal_matrix()
 
 
 def fog_state(ctx) -> FogState | None:
@@ -212,7 +228,8 @@ class StateTable:
                         ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
                         bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
                         ctx.depthcue if ctx.depthcue_on and ctx.config.rgb else None,
-                        bool(getattr(ctx, "resetls", True)))
+                        bool(getattr(ctx, "resetls", True)),
+                        texgen_eye(ctx, ctx.raster.snapshot()))
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1

@@ -56,16 +56,49 @@ class TexEnv:
     colour: tuple = (0.0, 0.0, 0.0, 0.0)
 
 
+# texgen(3G) modes of one coordinate, as TexGen stores them.
+GEN_LINEAR, GEN_CONTOUR, GEN_SPHEREMAP = "linear", "contour", "spheremap"
+
+
 @dataclass(frozen=True)
 class TexGen:
     """Texture-coordinate generation for s and t (texgen(3G)).
 
-    ``s_plane``/``t_plane`` are object-space planes (TG_LINEAR) when the coordinate's
-    generation is on, else None: that coordinate comes from t2*.
+    Per coordinate a mode (None: generation off, the coordinate comes from t2*) and
+    a plane (a, b, c, d):
+
+    * ``GEN_LINEAR`` (TG_LINEAR): an object-space plane, ``s = plane . (x, y, z, w)``;
+    * ``GEN_CONTOUR`` (TG_CONTOUR, OpenGL's GL_EYE_LINEAR): an eye-space plane, already
+      transformed by the inverse of the modelview in effect when texgen was called,
+      dotted with the eye-space vertex;
+    * ``GEN_SPHEREMAP`` (TG_SPHEREMAP, GL_SPHERE_MAP): no plane; the coordinate comes
+      from the eye-space reflection vector (docs/numeric_model.md s. 14).
     """
 
     s_plane: tuple | None = None
     t_plane: tuple | None = None
+    s_mode: str | None = None
+    t_mode: str | None = None
+
+    def __post_init__(self):
+        # A plane given without a mode is TG_LINEAR (the form TexGen(plane, plane)).
+        for k in ("s", "t"):
+            if getattr(self, f"{k}_mode") is None and getattr(self, f"{k}_plane") is not None:
+                object.__setattr__(self, f"{k}_mode", GEN_LINEAR)
+
+    def modes(self) -> tuple:
+        """(s mode, t mode), each a GEN_* or None."""
+        return self.s_mode, self.t_mode
+
+    def planes(self) -> tuple:
+        """(s plane, t plane), each a 4-tuple or None."""
+        return self.s_plane, self.t_plane
+
+    @property
+    def eye_space(self) -> bool:
+        """Whether a coordinate is generated in eye space (TG_CONTOUR, TG_SPHEREMAP):
+        the draw needs the modelview and, for the sphere map, the normals."""
+        return any(m in (GEN_CONTOUR, GEN_SPHEREMAP) for m in self.modes())
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,5 +168,5 @@ def pack_bindings(ids: list[int]):
     return info, env, np.ascontiguousarray(texels)
 
 
-__all__ = ["Texture", "TexEnv", "TexGen", "Binding", "binding_id", "binding",
-           "pack_bindings", "pack_rgba"]
+__all__ = ["Texture", "TexEnv", "TexGen", "GEN_LINEAR", "GEN_CONTOUR", "GEN_SPHEREMAP",
+           "Binding", "binding_id", "binding", "pack_bindings", "pack_rgba"]
