@@ -76,7 +76,7 @@ from .fragment import (
 )
 from .options import inline_ir, jit
 from .raster import covers, row_span
-from .texture import texture_fragment
+from .texture import texture_fragment  # (mipmaps: Numba's cache sees this file only)
 from .tiles import (
     TB_VALID,
     TILE_FULL,

@@ -6,9 +6,11 @@ Texture mapping is on while a non-zero texture and a non-zero environment are bo
 records and untextured drawing is untouched.  What is modelled, and how texels are
 addressed and filtered, is docs/numeric_model.md section 13:
 
-* texdef2d: 1..4 components, TX_MINFILTER / TX_MAGFILTER TX_POINT or TX_BILINEAR,
-  TX_WRAP / TX_WRAP_S / TX_WRAP_T TX_REPEAT or TX_CLAMP.  The MIPMAP filters, TX_TILE,
-  TX_BORDER and TX_SELECT are refused with a GLValueError (not modelled);
+* texdef2d: 1..4 components, TX_MINFILTER TX_POINT, TX_BILINEAR or a MIPMAP filter
+  (TX_MIPMAP_POINT, _LINEAR, _BILINEAR, _TRILINEAR, TX_MIPMAP; the pyramid is built
+  here by a box filter), TX_MAGFILTER TX_POINT or TX_BILINEAR, TX_WRAP / TX_WRAP_S /
+  TX_WRAP_T TX_REPEAT or TX_CLAMP.  TX_TILE, TX_BORDER and TX_SELECT are refused with
+  a GLValueError (not modelled);
 * tevdef: TV_MODULATE (the default), TV_DECAL, TV_BLEND with TV_COLOR;
 * texgen: TX_S / TX_T with TG_LINEAR (an object-space plane), TG_CONTOUR (an
   eye-space plane: transformed by the inverse of the modelview in effect at the
@@ -39,6 +41,7 @@ from vgxsim.state.textures import (
     TexGen,
     Texture,
     binding_id,
+    mipmap_pyramid,
 )
 
 from ._core import GLTypeError, GLValueError, as_float, as_int, current, describe, gl_function
@@ -46,8 +49,14 @@ from ._core import GLTypeError, GLValueError, as_float, as_int, current, describ
 __all__ = ["texdef2d", "tevdef", "texbind", "tevbind", "texgen"]
 
 _FILTERS = {int(GL.TX_POINT): C.TEXF_POINT, int(GL.TX_BILINEAR): C.TEXF_BILINEAR}
-_MIPMAPS = {int(GL.TX_MIPMAP), int(GL.TX_MIPMAP_POINT), int(GL.TX_MIPMAP_LINEAR),
-            int(GL.TX_MIPMAP_BILINEAR), int(GL.TX_MIPMAP_TRILINEAR)}
+# TX_MIPMAP, "the machine's mipmap filter": TX_MIPMAP_BILINEAR, the best of the VGX's
+# texture modes (point, bilinear, MIPmap point, linear and bilinear: [pstech] s. 4,
+# shared/reference/irisgl_reference.md) (*choice*).
+_MIPMAPS = {int(GL.TX_MIPMAP): C.TEXF_MIPMAP_BILINEAR,
+            int(GL.TX_MIPMAP_POINT): C.TEXF_MIPMAP_POINT,
+            int(GL.TX_MIPMAP_LINEAR): C.TEXF_MIPMAP_LINEAR,
+            int(GL.TX_MIPMAP_BILINEAR): C.TEXF_MIPMAP_BILINEAR,
+            int(GL.TX_MIPMAP_TRILINEAR): C.TEXF_MIPMAP_TRILINEAR}
 _WRAPS = {int(GL.TX_REPEAT): C.TEXW_REPEAT, int(GL.TX_CLAMP): C.TEXW_CLAMP}
 _ENVS = {int(GL.TV_MODULATE): C.TEV_MODULATE, int(GL.TV_DECAL): C.TEV_DECAL,
          int(GL.TV_BLEND): C.TEV_BLEND}
@@ -171,14 +180,15 @@ def texdef2d(index: int, nc: int, width: int, height: int, image, np_: int,
             raise GLValueError(f"{describe(name, args)}: property {tok:#x} has no value")
         val = int(p[i + 1])
         if tok in (int(GL.TX_MINFILTER), int(GL.TX_MAGFILTER)):
-            if val in _MIPMAPS:
-                raise GLValueError(f"{describe(name, args)}: MIPMAP filter {val:#x} is not "
-                                   f"modelled (TX_POINT, TX_BILINEAR are)")
-            if val not in _FILTERS:
+            if val in _MIPMAPS and tok == int(GL.TX_MAGFILTER):
+                raise GLValueError(f"{describe(name, args)}: MIPMAP filter {val:#x} is a "
+                                   f"minification filter (TX_MAGFILTER takes TX_POINT or "
+                                   f"TX_BILINEAR)")
+            if val not in _FILTERS and val not in _MIPMAPS:
                 raise GLValueError(f"{describe(name, args)}: filter {val:#x} is not a "
                                    f"valid TX_* filter")
             fil[C.X_MINFILTER if tok == int(GL.TX_MINFILTER) else C.X_MAGFILTER] = \
-                _FILTERS[val]
+                _FILTERS.get(val, _MIPMAPS.get(val))
         elif tok in (int(GL.TX_WRAP), int(GL.TX_WRAP_S), int(GL.TX_WRAP_T)):
             if val not in _WRAPS:
                 raise GLValueError(f"{describe(name, args)}: wrap {val:#x} is not modelled "
@@ -193,8 +203,11 @@ def texdef2d(index: int, nc: int, width: int, height: int, image, np_: int,
         i += 2
     ctx = current(name, args)
     u = _unit(ctx)
-    u.textures[idx] = Texture(_expand(img), ncv, fil[C.X_MINFILTER], fil[C.X_MAGFILTER],
-                              wrap[0], wrap[1])
+    texels = _expand(img)
+    # The pyramid is built once, here, and only for a MIPMAP minification filter.
+    levels = mipmap_pyramid(texels) if fil[C.X_MINFILTER] >= C.TEXF_MIPMAP_POINT else ()
+    u.textures[idx] = Texture(texels, ncv, fil[C.X_MINFILTER], fil[C.X_MAGFILTER],
+                              wrap[0], wrap[1], levels)
     _rebind(ctx)
 
 
