@@ -4,7 +4,10 @@ binding (vgxsim.state.textures) as OpenGL 1.x texture state.
 * The texture: ``glTexImage2D`` with the binding's texels, row 0 first (GL's row 0
   is t = 0, as texdef2d's); internal format GL_LUMINANCE, GL_LUMINANCE_ALPHA, GL_RGB
   or GL_RGBA for 1..4 components.
-* Filters TX_POINT / TX_BILINEAR -> GL_NEAREST / GL_LINEAR; wraps TX_REPEAT /
+* Filters TX_POINT / TX_BILINEAR -> GL_NEAREST / GL_LINEAR, the MIPMAP ones ->
+  GL_NEAREST_MIPMAP_NEAREST, NEAREST_MIPMAP_LINEAR, LINEAR_MIPMAP_NEAREST,
+  LINEAR_MIPMAP_LINEAR (MSDN "Translating texdef"), with vgxsim's pyramid uploaded
+  level by level (GL_TEXTURE_MAX_LEVEL the last); wraps TX_REPEAT /
   TX_CLAMP -> GL_REPEAT / GL_CLAMP_TO_EDGE (docs/numeric_model.md s. 13: the edge
   texel, no border).
 * Environments TV_MODULATE / TV_DECAL / TV_BLEND -> GL_MODULATE / GL_DECAL /
@@ -41,8 +44,19 @@ def apply_texture(GL, state, cache: dict) -> None:
         data = np.ascontiguousarray(tex.texels[..., comps], np.uint8)
         h, w = data.shape[:2]
         GL.glTexImage2D(GL.GL_TEXTURE_2D, 0, fmt, w, h, 0, fmt, GL.GL_UNSIGNED_BYTE, data)
+        # The pyramid as vgxsim built it, level by level, so that a comparison sees
+        # the level choice and the filters, not two box filters.
+        for k, level in enumerate(tex.levels, start=1):
+            lv = np.ascontiguousarray(level[..., comps], np.uint8)
+            GL.glTexImage2D(GL.GL_TEXTURE_2D, k, fmt, lv.shape[1], lv.shape[0], 0, fmt,
+                            GL.GL_UNSIGNED_BYTE, lv)
+        GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MAX_LEVEL, len(tex.levels))
     GL.glBindTexture(GL.GL_TEXTURE_2D, name)
-    filt = {C.TEXF_POINT: GL.GL_NEAREST, C.TEXF_BILINEAR: GL.GL_LINEAR}
+    filt = {C.TEXF_POINT: GL.GL_NEAREST, C.TEXF_BILINEAR: GL.GL_LINEAR,
+            C.TEXF_MIPMAP_POINT: GL.GL_NEAREST_MIPMAP_NEAREST,
+            C.TEXF_MIPMAP_LINEAR: GL.GL_NEAREST_MIPMAP_LINEAR,
+            C.TEXF_MIPMAP_BILINEAR: GL.GL_LINEAR_MIPMAP_NEAREST,
+            C.TEXF_MIPMAP_TRILINEAR: GL.GL_LINEAR_MIPMAP_LINEAR}
     wrap = {C.TEXW_REPEAT: GL.GL_REPEAT, C.TEXW_CLAMP: GL.GL_CLAMP_TO_EDGE}
     GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MIN_FILTER, filt[tex.minfilter])
     GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MAG_FILTER, filt[tex.magfilter])
