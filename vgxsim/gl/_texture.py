@@ -4,7 +4,7 @@ Texture mapping is on while a non-zero texture and a non-zero environment are bo
 (texbind(3G), tevbind(3G)); the binding becomes one id in the raster registers
 (``RasterState.texture``), so textured and untextured drawing are different state
 records and untextured drawing is untouched.  What is modelled, and how texels are
-addressed and filtered, is docs/numeric_model.md section 13:
+addressed and filtered, is docs/numeric_model.md section 14:
 
 * texdef2d: 1..4 components, TX_MINFILTER TX_POINT, TX_BILINEAR or a MIPMAP filter
   (TX_MIPMAP_POINT, _LINEAR, _BILINEAR, _TRILINEAR, TX_MIPMAP; the pyramid is built

@@ -8,7 +8,7 @@ binding (vgxsim.state.textures) as OpenGL 1.x texture state.
   GL_NEAREST_MIPMAP_NEAREST, NEAREST_MIPMAP_LINEAR, LINEAR_MIPMAP_NEAREST,
   LINEAR_MIPMAP_LINEAR (MSDN "Translating texdef"), with vgxsim's pyramid uploaded
   level by level (GL_TEXTURE_MAX_LEVEL the last); wraps TX_REPEAT /
-  TX_CLAMP -> GL_REPEAT / GL_CLAMP_TO_EDGE (docs/numeric_model.md s. 13: the edge
+  TX_CLAMP -> GL_REPEAT / GL_CLAMP_TO_EDGE (docs/numeric_model.md s. 14: the edge
   texel, no border).
 * Environments TV_MODULATE / TV_DECAL / TV_BLEND -> GL_MODULATE / GL_DECAL /
   GL_BLEND with GL_TEXTURE_ENV_COLOR.  GL leaves DECAL undefined for luminance

@@ -9,7 +9,7 @@ state records like any other register and a batch packs only the bindings it use
 into arrays for the kernels (:func:`pack_bindings`).
 
 The texture contract (texel centres, perspective-correct coordinates, filters,
-wraps, environments) is docs/numeric_model.md section 13.
+wraps, environments) is docs/numeric_model.md section 14.
 """
 
 from __future__ import annotations
