@@ -152,31 +152,51 @@ def _level_sample(texels, base, w, h, ws, wt, s, tt, bilinear, level):
                    bilinear)
 
 
-@jit
-def _mipmapped(texels, base, w, h, ws, wt, s, tt, fil, levels, rho2):
-    """The MIPMAP minification filters (docs/numeric_model.md s. 14): the level of
-    detail ``lambda = log2(rho2) / 2`` (rho2 > 1), the nearest level
-    ``ceil(lambda + 1/2) - 1`` (0 for lambda <= 1/2) or the two levels around it, each
-    point- or bilinear-sampled; levels past the last are the last.  Out of line: the
-    rare path, kept out of the fragment loop's compile."""
+@inline
+def _level_of_detail(fil, levels, rho2):
+    """The MIPMAP filters' level and mix (docs/numeric_model.md s. 14): ``lambda =
+    log2(rho2) / 2`` (rho2 > 1); the nearest level ``ceil(lambda + 1/2) - 1`` (0 for
+    lambda <= 1/2), or level ``floor(lambda)`` mixed with the next by the fraction
+    ``f``; levels past the last are the last.  Returns (level, f, bilinear)."""
     lam = 0.5 * np.log2(rho2)
     if lam > 64.0:  # an infinite derivative: the last level
         lam = 64.0
     bilinear = fil == TEXF_MIPMAP_BILINEAR or fil == TEXF_MIPMAP_TRILINEAR
     top = levels - 1
+    f = 0.0
     if fil == TEXF_MIPMAP_POINT or fil == TEXF_MIPMAP_BILINEAR:
         d = np.int64(0)
         if lam > 0.5:
             d = np.int64(np.ceil(lam + 0.5)) - 1
-        return _level_sample(texels, base, w, h, ws, wt, s, tt, bilinear, min(d, top))
-    d = np.int64(np.floor(lam))
-    if d >= top:
-        return _level_sample(texels, base, w, h, ws, wt, s, tt, bilinear, top)
-    f = lam - np.floor(lam)
-    a0, a1, a2, a3 = _level_sample(texels, base, w, h, ws, wt, s, tt, bilinear, d)
-    b0, b1, b2, b3 = _level_sample(texels, base, w, h, ws, wt, s, tt, bilinear, d + 1)
-    return ((1.0 - f) * a0 + f * b0, (1.0 - f) * a1 + f * b1, (1.0 - f) * a2 + f * b2,
-            (1.0 - f) * a3 + f * b3)
+        d = min(d, top)
+    else:
+        d = np.int64(np.floor(lam))
+        if d >= top:
+            d = top
+        else:
+            f = lam - np.floor(lam)
+    return d, f, bilinear
+
+
+@jit
+def _mipmapped(texels, base, w, h, ws, wt, s, tt, fil, levels, rho2):
+    """A MIPMAP-filtered texel: level ``d`` of :func:`_level_of_detail` with weight
+    1 - f, then, for the linear filters below the last level, level d + 1 with weight
+    f (``(1 - f) a + f b``; with f = 0 exactly a).  Out of line and with one sampling
+    call site, so that the rare path adds little to the fragment code's compile and
+    nothing to the non-mipmap path."""
+    d, f, bilinear = _level_of_detail(fil, levels, rho2)
+    c0 = c1 = c2 = c3 = 0.0
+    for k in range(2):
+        if k == 1 and f == 0.0:
+            break
+        x0, x1, x2, x3 = _level_sample(texels, base, w, h, ws, wt, s, tt, bilinear, d + k)
+        wk = 1.0 - f if k == 0 else f
+        c0 = c0 + wk * x0
+        c1 = c1 + wk * x1
+        c2 = c2 + wk * x2
+        c3 = c3 + wk * x3
+    return c0, c1, c2, c3
 
 
 @jit
