@@ -1,13 +1,14 @@
 """The texture stage: texture-coordinate planes and the per-fragment texture look-up.
 
-docs/numeric_model.md section 13.  Per vertex the geometry stage hands over s/w,
+docs/numeric_model.md section 14.  Per vertex the geometry stage hands over s/w,
 t/w and 1/w (w the clip-space w); they are interpolated linearly in the window like
 colour (section 4: the same canonical vertex order and plane origin), and each
 fragment divides by the interpolated 1/w, so texture coordinates are
 perspective-correct.  The look-up addresses texels with centres at half-integers,
-wraps (repeat or clamp to the edge texel), filters (point or bilinear; minification
-or magnification decided per fragment from the coordinates' screen derivatives)
-and applies the environment (modulate, decal, blend) to the fragment colour.
+wraps (repeat or clamp to the edge texel), filters (point or bilinear, and the
+mipmap filters; minification or magnification and the level of detail decided per
+fragment from the coordinates' exact screen derivatives) and applies the
+environment (modulate, decal, blend) to the fragment colour.
 """
 
 from __future__ import annotations
@@ -18,9 +19,13 @@ from vgxsim.state.codes import (
     TEV_BLEND,
     TEV_DECAL,
     TEXF_BILINEAR,
+    TEXF_MIPMAP_BILINEAR,
+    TEXF_MIPMAP_POINT,
+    TEXF_MIPMAP_TRILINEAR,
     TEXW_CLAMP,
     X_ENV,
     X_HEIGHT,
+    X_LEVELS,
     X_MAGFILTER,
     X_MINFILTER,
     X_OFFSET,
@@ -99,11 +104,99 @@ def _texel(texels, base, w, i, j, ch):
 
 @inline
 def _filtered(texels, base, w, i0, i1, j0, j1, al, be, ch):
-    """Bilinear sum of one component, in the order docs/numeric_model.md s. 13 writes."""
+    """Bilinear sum of one component, in the order docs/numeric_model.md s. 14 writes."""
     return ((((1.0 - al) * (1.0 - be)) * _texel(texels, base, w, i0, j0, ch)
              + (al * (1.0 - be)) * _texel(texels, base, w, i1, j0, ch))
             + ((1.0 - al) * be) * _texel(texels, base, w, i0, j1, ch)) \
         + (al * be) * _texel(texels, base, w, i1, j1, ch)
+
+
+@inline
+def _sample(texels, base, w, h, ws, wt, s, tt, bilinear):
+    """One filtered texel (four components) of the w x h image at ``base``, point
+    or bilinear, at texture coordinates (s, t) (docs/numeric_model.md s. 14)."""
+    # Far outside the texture (or a degenerate 1/w): keep the texel index an int64.
+    u = min(max(s * w, -1e15), 1e15)
+    v = min(max(tt * h, -1e15), 1e15)
+    if bilinear:
+        u = u - 0.5
+        v = v - 0.5
+        fu = np.floor(u)
+        fv = np.floor(v)
+        al = u - fu
+        be = v - fv
+        i0 = _wrap(np.int64(fu), w, ws)
+        i1 = _wrap(np.int64(fu) + 1, w, ws)
+        j0 = _wrap(np.int64(fv), h, wt)
+        j1 = _wrap(np.int64(fv) + 1, h, wt)
+    else:
+        # Point sampling is the bilinear sum with zero weights off the texel: the
+        # same expression, exactly the texel (0 * T adds exact zeros).
+        al = 0.0
+        be = 0.0
+        i0 = i1 = _wrap(np.int64(np.floor(u)), w, ws)
+        j0 = j1 = _wrap(np.int64(np.floor(v)), h, wt)
+    return (_filtered(texels, base, w, i0, i1, j0, j1, al, be, 0),
+            _filtered(texels, base, w, i0, i1, j0, j1, al, be, 1),
+            _filtered(texels, base, w, i0, i1, j0, j1, al, be, 2),
+            _filtered(texels, base, w, i0, i1, j0, j1, al, be, 3))
+
+
+@inline
+def _level_sample(texels, base, w, h, ws, wt, s, tt, bilinear, level):
+    """:func:`_sample` in mipmap level ``level``: max(w >> k, 1) x max(h >> k, 1)
+    texels, stored after levels 0 .. k - 1."""
+    for k in range(level):
+        base += max(w >> k, 1) * max(h >> k, 1)
+    return _sample(texels, base, max(w >> level, 1), max(h >> level, 1), ws, wt, s, tt,
+                   bilinear)
+
+
+@inline
+def _level_of_detail(fil, levels, rho2):
+    """The MIPMAP filters' level and mix (docs/numeric_model.md s. 14): ``lambda =
+    log2(rho2) / 2`` (rho2 > 1); the nearest level ``ceil(lambda + 1/2) - 1`` (0 for
+    lambda <= 1/2), or level ``floor(lambda)`` mixed with the next by the fraction
+    ``f``; levels past the last are the last.  Returns (level, f, bilinear)."""
+    lam = 0.5 * np.log2(rho2)
+    if lam > 64.0:  # an infinite derivative: the last level
+        lam = 64.0
+    bilinear = fil == TEXF_MIPMAP_BILINEAR or fil == TEXF_MIPMAP_TRILINEAR
+    top = levels - 1
+    f = 0.0
+    if fil == TEXF_MIPMAP_POINT or fil == TEXF_MIPMAP_BILINEAR:
+        d = np.int64(0)
+        if lam > 0.5:
+            d = np.int64(np.ceil(lam + 0.5)) - 1
+        d = min(d, top)
+    else:
+        d = np.int64(np.floor(lam))
+        if d >= top:
+            d = top
+        else:
+            f = lam - np.floor(lam)
+    return d, f, bilinear
+
+
+@jit
+def _mipmapped(texels, base, w, h, ws, wt, s, tt, fil, levels, rho2):
+    """A MIPMAP-filtered texel: level ``d`` of :func:`_level_of_detail` with weight
+    1 - f, then, for the linear filters below the last level, level d + 1 with weight
+    f (``(1 - f) a + f b``; with f = 0 exactly a).  Out of line and with one sampling
+    call site, so that the rare path adds little to the fragment code's compile and
+    nothing to the non-mipmap path."""
+    d, f, bilinear = _level_of_detail(fil, levels, rho2)
+    c0 = c1 = c2 = c3 = 0.0
+    for k in range(2):
+        if k == 1 and f == 0.0:
+            break
+        x0, x1, x2, x3 = _level_sample(texels, base, w, h, ws, wt, s, tt, bilinear, d + k)
+        wk = 1.0 - f if k == 0 else f
+        c0 = c0 + wk * x0
+        c1 = c1 + wk * x1
+        c2 = c2 + wk * x2
+        c3 = c3 + wk * x3
+    return c0, c1, c2, c3
 
 
 @jit
@@ -127,6 +220,7 @@ def texture_fragment(t_tex, t, x, y, x0, y0, info, env_colour, texels, slot, r, 
     w = info[slot, X_WIDTH]
     h = info[slot, X_HEIGHT]
     fil = info[slot, X_MAGFILTER]
+    rho2 = 0.0
     if info[slot, X_MINFILTER] != fil:
         dudx = w * (t_tex[t, 0, 1] - s * t_tex[t, 2, 1]) / q
         dvdx = h * (t_tex[t, 1, 1] - tt * t_tex[t, 2, 1]) / q
@@ -135,34 +229,14 @@ def texture_fragment(t_tex, t, x, y, x0, y0, info, env_colour, texels, slot, r, 
         rho2 = max(dudx * dudx + dvdx * dvdx, dudy * dudy + dvdy * dvdy)
         if rho2 > 1.0:
             fil = info[slot, X_MINFILTER]
-    # Far outside the texture (or a degenerate 1/w): keep the texel index an int64.
-    u = min(max(s * w, -1e15), 1e15)
-    v = min(max(tt * h, -1e15), 1e15)
     base = info[slot, X_OFFSET]
     ws = info[slot, X_WRAP_S]
     wt = info[slot, X_WRAP_T]
-    if fil == TEXF_BILINEAR:
-        u = u - 0.5
-        v = v - 0.5
-        fu = np.floor(u)
-        fv = np.floor(v)
-        al = u - fu
-        be = v - fv
-        i0 = _wrap(np.int64(fu), w, ws)
-        i1 = _wrap(np.int64(fu) + 1, w, ws)
-        j0 = _wrap(np.int64(fv), h, wt)
-        j1 = _wrap(np.int64(fv) + 1, h, wt)
+    if fil >= TEXF_MIPMAP_POINT:
+        t0, t1, t2, t3 = _mipmapped(texels, base, w, h, ws, wt, s, tt, fil,
+                                    info[slot, X_LEVELS], rho2)
     else:
-        # Point sampling is the bilinear sum with zero weights off the texel: the
-        # same expression, exactly the texel (0 * T adds exact zeros).
-        al = 0.0
-        be = 0.0
-        i0 = i1 = _wrap(np.int64(np.floor(u)), w, ws)
-        j0 = j1 = _wrap(np.int64(np.floor(v)), h, wt)
-    t0 = _filtered(texels, base, w, i0, i1, j0, j1, al, be, 0)
-    t1 = _filtered(texels, base, w, i0, i1, j0, j1, al, be, 1)
-    t2 = _filtered(texels, base, w, i0, i1, j0, j1, al, be, 2)
-    t3 = _filtered(texels, base, w, i0, i1, j0, j1, al, be, 3)
+        t0, t1, t2, t3 = _sample(texels, base, w, h, ws, wt, s, tt, fil == TEXF_BILINEAR)
     fr, fg, fb, fa = np.float64(r), np.float64(g), np.float64(b), np.float64(a)
     mode = info[slot, X_ENV]
     if mode == TEV_DECAL:

@@ -4,14 +4,18 @@ Texture mapping is on while a non-zero texture and a non-zero environment are bo
 (texbind(3G), tevbind(3G)); the binding becomes one id in the raster registers
 (``RasterState.texture``), so textured and untextured drawing are different state
 records and untextured drawing is untouched.  What is modelled, and how texels are
-addressed and filtered, is docs/numeric_model.md section 13:
+addressed and filtered, is docs/numeric_model.md section 14:
 
-* texdef2d: 1..4 components, TX_MINFILTER / TX_MAGFILTER TX_POINT or TX_BILINEAR,
-  TX_WRAP / TX_WRAP_S / TX_WRAP_T TX_REPEAT or TX_CLAMP.  The MIPMAP filters, TX_TILE,
-  TX_BORDER and TX_SELECT are refused with a GLValueError (not modelled);
+* texdef2d: 1..4 components, TX_MINFILTER TX_POINT, TX_BILINEAR or a MIPMAP filter
+  (TX_MIPMAP_POINT, _LINEAR, _BILINEAR, _TRILINEAR, TX_MIPMAP; the pyramid is built
+  here by a box filter), TX_MAGFILTER TX_POINT or TX_BILINEAR, TX_WRAP / TX_WRAP_S /
+  TX_WRAP_T TX_REPEAT or TX_CLAMP.  TX_TILE, TX_BORDER and TX_SELECT are refused with
+  a GLValueError (not modelled);
 * tevdef: TV_MODULATE (the default), TV_DECAL, TV_BLEND with TV_COLOR;
-* texgen: TX_S / TX_T with TG_LINEAR (an object-space plane), TG_ON, TG_OFF.
-  TG_CONTOUR and TG_SPHEREMAP are refused (not modelled).
+* texgen: TX_S / TX_T with TG_LINEAR (an object-space plane), TG_CONTOUR (an
+  eye-space plane: transformed by the inverse of the modelview in effect at the
+  call, as OpenGL's GL_EYE_LINEAR, its translation [MSDN "Translating texgen"]),
+  TG_SPHEREMAP (the reflection-vector sphere map, GL_SPHERE_MAP), TG_ON, TG_OFF.
 
 The image: a numpy array of shape (height, width, nc) with components 0..255 in
 the order I / I A / R G B / R G B A, row 0 the bottom row (the Python form of this
@@ -29,15 +33,30 @@ import numpy as np
 
 from vgxsim import GL
 from vgxsim.state import codes as C
-from vgxsim.state.textures import TexEnv, TexGen, Texture, binding_id
+from vgxsim.state.textures import (
+    GEN_CONTOUR,
+    GEN_LINEAR,
+    GEN_SPHEREMAP,
+    TexEnv,
+    TexGen,
+    Texture,
+    binding_id,
+    mipmap_pyramid,
+)
 
 from ._core import GLTypeError, GLValueError, as_float, as_int, current, describe, gl_function
 
 __all__ = ["texdef2d", "tevdef", "texbind", "tevbind", "texgen"]
 
 _FILTERS = {int(GL.TX_POINT): C.TEXF_POINT, int(GL.TX_BILINEAR): C.TEXF_BILINEAR}
-_MIPMAPS = {int(GL.TX_MIPMAP), int(GL.TX_MIPMAP_POINT), int(GL.TX_MIPMAP_LINEAR),
-            int(GL.TX_MIPMAP_BILINEAR), int(GL.TX_MIPMAP_TRILINEAR)}
+# TX_MIPMAP, "the machine's mipmap filter": TX_MIPMAP_BILINEAR, the best of the VGX's
+# texture modes (point, bilinear, MIPmap point, linear and bilinear: [pstech] s. 4,
+# shared/reference/irisgl_reference.md) (*choice*).
+_MIPMAPS = {int(GL.TX_MIPMAP): C.TEXF_MIPMAP_BILINEAR,
+            int(GL.TX_MIPMAP_POINT): C.TEXF_MIPMAP_POINT,
+            int(GL.TX_MIPMAP_LINEAR): C.TEXF_MIPMAP_LINEAR,
+            int(GL.TX_MIPMAP_BILINEAR): C.TEXF_MIPMAP_BILINEAR,
+            int(GL.TX_MIPMAP_TRILINEAR): C.TEXF_MIPMAP_TRILINEAR}
 _WRAPS = {int(GL.TX_REPEAT): C.TEXW_REPEAT, int(GL.TX_CLAMP): C.TEXW_CLAMP}
 _ENVS = {int(GL.TV_MODULATE): C.TEV_MODULATE, int(GL.TV_DECAL): C.TEV_DECAL,
          int(GL.TV_BLEND): C.TEV_BLEND}
@@ -51,7 +70,7 @@ class TextureUnit:
         self.envs: dict[int, TexEnv] = {}
         self.bound_texture = 0
         self.bound_env = 0
-        # Per coordinate (TX_S, TX_T): the defined TG_LINEAR plane and whether on.
+        # Per coordinate (TX_S, TX_T): the defined (GEN_* mode, plane) and whether on.
         self.planes: list = [None, None]
         self.gen_on = [False, False]
 
@@ -70,8 +89,9 @@ def _rebind(ctx) -> None:
     env = u.envs.get(u.bound_env)
     ident = 0
     if tex is not None and env is not None:
-        gen = TexGen(u.planes[0] if u.gen_on[0] else None,
-                     u.planes[1] if u.gen_on[1] else None)
+        (ms, ps), (mt, pt) = ((u.planes[k] if u.gen_on[k] else None) or (None, None)
+                              for k in (0, 1))
+        gen = TexGen(ps, pt, ms, mt)
         ident = binding_id(tex, env, gen)
     ctx.raster.set(texture=ident)
 
@@ -160,14 +180,15 @@ def texdef2d(index: int, nc: int, width: int, height: int, image, np_: int,
             raise GLValueError(f"{describe(name, args)}: property {tok:#x} has no value")
         val = int(p[i + 1])
         if tok in (int(GL.TX_MINFILTER), int(GL.TX_MAGFILTER)):
-            if val in _MIPMAPS:
-                raise GLValueError(f"{describe(name, args)}: MIPMAP filter {val:#x} is not "
-                                   f"modelled (TX_POINT, TX_BILINEAR are)")
-            if val not in _FILTERS:
+            if val in _MIPMAPS and tok == int(GL.TX_MAGFILTER):
+                raise GLValueError(f"{describe(name, args)}: MIPMAP filter {val:#x} is a "
+                                   f"minification filter (TX_MAGFILTER takes TX_POINT or "
+                                   f"TX_BILINEAR)")
+            if val not in _FILTERS and val not in _MIPMAPS:
                 raise GLValueError(f"{describe(name, args)}: filter {val:#x} is not a "
                                    f"valid TX_* filter")
             fil[C.X_MINFILTER if tok == int(GL.TX_MINFILTER) else C.X_MAGFILTER] = \
-                _FILTERS[val]
+                _FILTERS.get(val, _MIPMAPS.get(val))
         elif tok in (int(GL.TX_WRAP), int(GL.TX_WRAP_S), int(GL.TX_WRAP_T)):
             if val not in _WRAPS:
                 raise GLValueError(f"{describe(name, args)}: wrap {val:#x} is not modelled "
@@ -182,8 +203,11 @@ def texdef2d(index: int, nc: int, width: int, height: int, image, np_: int,
         i += 2
     ctx = current(name, args)
     u = _unit(ctx)
-    u.textures[idx] = Texture(_expand(img), ncv, fil[C.X_MINFILTER], fil[C.X_MAGFILTER],
-                              wrap[0], wrap[1])
+    texels = _expand(img)
+    # The pyramid is built once, here, and only for a MIPMAP minification filter.
+    levels = mipmap_pyramid(texels) if fil[C.X_MINFILTER] >= C.TEXF_MIPMAP_POINT else ()
+    u.textures[idx] = Texture(texels, ncv, fil[C.X_MINFILTER], fil[C.X_MAGFILTER],
+                              wrap[0], wrap[1], levels)
     _rebind(ctx)
 
 
@@ -248,11 +272,26 @@ def tevbind(target: int, index: int) -> None:
           "tevdef")
 
 
+def _eye_plane(ctx, plane: tuple) -> tuple:
+    """TG_CONTOUR: the plane in eye coordinates, ``M^-1 p`` for the modelview M in
+    effect now (row vectors: an eye point ``e = o M`` is on it where ``e . M^-1 p =
+    o . p``), so that the plane stays fixed in eye space however the modelview
+    changes later (texgen(3G); OpenGL's GL_EYE_PLANE transforms the same way)."""
+    m = ctx.matrices.modelview_matrix()
+    try:
+        inv = np.linalg.inv(m)
+    except np.linalg.LinAlgError:
+        inv = np.linalg.pinv(m)
+    return tuple(float(v) for v in inv @ np.asarray(plane, np.float64))
+
+
 @gl_function()
 def texgen(coord: int, mode: int, params) -> None:
     """Texture-coordinate generation (texgen(3G)) for TX_S or TX_T: TG_LINEAR defines
-    an object-space plane (a, b, c, d: s = a x + b y + c z + d w), TG_ON turns the
-    defined generation on, TG_OFF off (the coordinate comes from t2* again)."""
+    an object-space plane (a, b, c, d: s = a x + b y + c z + d w), TG_CONTOUR a plane
+    in eye coordinates (taken through the current modelview), TG_SPHEREMAP the sphere
+    map (no parameters); TG_ON turns the defined generation on, TG_OFF off (the
+    coordinate comes from t2* again)."""
     args = (coord, mode, params)
     c = as_int("texgen", args, "coord", coord)
     if c not in (int(GL.TX_S), int(GL.TX_T)):
@@ -260,23 +299,29 @@ def texgen(coord: int, mode: int, params) -> None:
     m = as_int("texgen", args, "mode", mode)
     ctx = current("texgen", args)
     u = _unit(ctx)
-    if m == int(GL.TG_LINEAR):
+    if m in (int(GL.TG_LINEAR), int(GL.TG_CONTOUR)):
         p = _props("texgen", args, params)
         if len(p) < 4:
-            raise GLValueError(f"{describe('texgen', args)}: TG_LINEAR needs a plane of "
+            which = "TG_LINEAR" if m == int(GL.TG_LINEAR) else "TG_CONTOUR"
+            raise GLValueError(f"{describe('texgen', args)}: {which} needs a plane of "
                                f"4 values")
-        u.planes[c] = tuple(p[:4])
+        if m == int(GL.TG_LINEAR):
+            u.planes[c] = (GEN_LINEAR, tuple(p[:4]))
+        else:
+            u.planes[c] = (GEN_CONTOUR, _eye_plane(ctx, tuple(p[:4])))
+    elif m == int(GL.TG_SPHEREMAP):
+        u.planes[c] = (GEN_SPHEREMAP, None)
     elif m == int(GL.TG_ON):
         if u.planes[c] is None:
-            raise GLValueError(f"{describe('texgen', args)}: TG_ON before a TG_LINEAR "
-                               f"definition for this coordinate")
+            raise GLValueError(f"{describe('texgen', args)}: TG_ON before a TG_LINEAR, "
+                               f"TG_CONTOUR or TG_SPHEREMAP definition for this coordinate")
         u.gen_on[c] = True
     elif m == int(GL.TG_OFF):
         u.gen_on[c] = False
-    elif m in (int(GL.TG_CONTOUR), int(GL.TG_SPHEREMAP)):
-        raise GLValueError(f"{describe('texgen', args)}: mode {m} is not modelled "
-                           f"(TG_LINEAR, TG_ON and TG_OFF are)")
     else:
+        if m == int(GL.TG_REFRACTMAP):
+            raise GLValueError(f"{describe('texgen', args)}: TG_REFRACTMAP is not modelled "
+                               f"(TG_LINEAR, TG_CONTOUR, TG_SPHEREMAP are)")
         raise GLValueError(f"{describe('texgen', args)}: mode {m} is not a valid TG_* "
                            f"token")
     _rebind(ctx)

@@ -149,6 +149,8 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None) -> Non
         cols = col[sl] if _wants_colour(state) else None
         lit = lit if normals is not None else None
         kw = {"texcoords": None if tc is None else tc[sl]}
+        if state.texgen_eye is not None:  # TG_SPHEREMAP reads normals, lit or not
+            kw["eye_normals"] = nrm[sl]
         if draw.BATCH_LIGHTING and cols is not None and normals is not None:
             kw["lit_rgba"] = len(lit_groups)  # filled in once all groups are known
             lit_groups.append((state, bool(lms), pos[sl], normals, cols, lit))

@@ -14,6 +14,7 @@ import numpy as np
 
 from vgxsim.geometry import assembly
 from vgxsim.geometry.pipeline import Viewing, draw_points, draw_polyline, draw_triangles
+from vgxsim.geometry.texgen import eye_texture_coords
 from vgxsim.geometry.transform import apply
 from vgxsim.lighting import shade, shade_runs
 from vgxsim.state.raster import FLAT, needs_colour
@@ -185,7 +186,8 @@ def _lit_colours(state: DrawState, lmcolor_set: bool, obj, cols, normals, lit, t
 
 
 def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals, lit,
-                    tris, prov, tri_states=None, lit_rgba=None, texcoords=None) -> None:
+                    tris, prov, tri_states=None, lit_rgba=None, texcoords=None,
+                    eye_normals=None) -> None:
     """Light one primitive's (or one group's) vertices and queue its triangles on
     ``ctx`` for a geometry pass shared with the queued ones that project alike.
 
@@ -194,8 +196,18 @@ def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals
     Lighting is per vertex, so lighting each part on its own gives the colours
     lighting them together would.  ``lit_rgba``: the colours already lit
     (:func:`shade_groups`).  ``texcoords`` (N, 2): t2* per vertex, or None.
+    ``eye_normals`` (N, 3): the vertex normals TG_SPHEREMAP reads when lighting does
+    not hand them over (default ``normals``, else the current normal).
     """
     n_in = obj.shape[0]
+    if state.texgen_eye is not None:  # TG_CONTOUR / TG_SPHEREMAP: in this modelview
+        from vgxsim.state.textures import binding
+
+        nrm = eye_normals if eye_normals is not None else normals
+        if nrm is None:
+            nrm = np.broadcast_to(np.asarray(ctx.normal, np.float64), (n_in, 3))
+        texcoords = eye_texture_coords(binding(state.raster.texture).texgen, obj,
+                                       *state.texgen_eye, nrm, texcoords)
     if lit_rgba is not None:
         rgba = vertex_colour_stage(state, obj, lit_rgba)  # two-sided is never batched
     else:
@@ -320,8 +332,11 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
             nrm = normals if private else np.array(normals, np.float64)
         if texcoords is not None:
             texcoords = np.array(texcoords, np.float64).reshape(n, 2)
+        eye_nrm = None
+        if state.texgen_eye is not None and normals is not None:
+            eye_nrm = np.asarray(normals, np.float64)
         defer_triangles(ctx, state, lmcolor_set, obj, cols, nrm, litm, tris, prov,
-                        texcoords=texcoords)
+                        texcoords=texcoords, eye_normals=eye_nrm)
         return
     commit_triangles(ctx)
     rgba = None

@@ -66,6 +66,10 @@ class DrawState(NamedTuple):
     lsbackup : bool
         Whether the last two pixels of each line are drawn whatever the line style
         (lsbackup(3G)).
+    texgen_eye : (modelview (4, 4), normal matrix (3, 3)) or None
+        The eye space that TG_CONTOUR / TG_SPHEREMAP generation reads (texgen(3G)),
+        when the bound texture generates a coordinate there, else None.  It changes
+        only with the matrices, so the record's ``mvp`` identity stands for it.
     """
 
     raster: RasterState
@@ -80,6 +84,18 @@ class DrawState(NamedTuple):
     depthcue: DepthCue | None = None
     resetls: bool = True
     lsbackup: bool = False
+    texgen_eye: tuple | None = None
+
+
+def texgen_eye(ctx, rs: RasterState) -> tuple | None:
+    """(modelview, normal matrix) when the bound texture's texgen works in eye space."""
+    if rs.texture == 0:
+        return None
+    from vgxsim.state.textures import binding
+
+    if not binding(rs.texture).texgen.eye_space:
+        return None
+    return ctx.matrices.modelview_matrix(), ctx.matrices.normal_matrix()
 
 
 def fog_state(ctx) -> FogState | None:
@@ -219,7 +235,8 @@ class StateTable:
                         bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
                         depthcue_state(ctx),
                         bool(getattr(ctx, "resetls", True)),
-                        bool(getattr(ctx, "lsbackup", False)))
+                        bool(getattr(ctx, "lsbackup", False)),
+                        texgen_eye(ctx, ctx.raster.snapshot()))
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1

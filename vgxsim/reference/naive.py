@@ -45,6 +45,9 @@ from vgxsim.state.codes import (
     TEV_BLEND,
     TEV_DECAL,
     TEXF_BILINEAR,
+    TEXF_MIPMAP_BILINEAR,
+    TEXF_MIPMAP_POINT,
+    TEXF_MIPMAP_TRILINEAR,
     TEXW_CLAMP,
 )
 from vgxsim.state.raster import RasterState
@@ -525,15 +528,86 @@ def _triangle(fb, verts, state):
         _fragment(fb, state, X, Y, zf, rgba)
 
 
-# ------------------------------------------------------------------ §13 texture
+# ------------------------------------------------------------------ §14 texture
 
 
 def _texel_index(i, n, wrap):
     return _clamp(i, 0, n - 1) if wrap == TEXW_CLAMP else i % n
 
 
+_LEVELS: dict[int, list] = {}
+
+
+def _pyramid(texture) -> list:
+    """Levels 0.. of a mipmapped texture as lists of rows of RGBA int lists (§14 box
+    filter: the mean of the 2 x 2 texels under each, indices past the edge clamped,
+    rounded half up), down to 1 x 1."""
+    got = _LEVELS.get(id(texture))
+    if got is not None and got[0] is texture:
+        return got[1]
+    cur = [[[int(c) for c in px] for px in row] for row in texture.texels.tolist()]
+    levels = [cur]
+    while len(cur) > 1 or len(cur[0]) > 1:
+        h, w = len(cur), len(cur[0])
+        nxt = []
+        for j in range(max(h // 2, 1)):
+            ja, jb = min(2 * j, h - 1), min(2 * j + 1, h - 1)
+            row = []
+            for i in range(max(w // 2, 1)):
+                ia, ib = min(2 * i, w - 1), min(2 * i + 1, w - 1)
+                row.append([(cur[ja][ia][k] + cur[ja][ib][k] + cur[jb][ia][k]
+                             + cur[jb][ib][k] + 2) // 4 for k in range(4)])
+            nxt.append(row)
+        cur = nxt
+        levels.append(cur)
+    _LEVELS[id(texture)] = (texture, levels)
+    return levels
+
+
+def _sample(img, wrap_s, wrap_t, s, t, bilinear):
+    """Point or bilinear sample (§14) of a level ``img`` (rows of RGBA, lists or the
+    (H, W, 4) texel array) at (s, t)."""
+    h, w = len(img), len(img[0])
+    u = min(max(s * w, -1e15), 1e15)
+    v = min(max(t * h, -1e15), 1e15)
+    if bilinear:
+        u -= 0.5
+        v -= 0.5
+        i0, j0 = math.floor(u), math.floor(v)
+        al, be = u - i0, v - j0
+        ia, ib = (_texel_index(i, w, wrap_s) for i in (i0, i0 + 1))
+        ja, jb = (_texel_index(j, h, wrap_t) for j in (j0, j0 + 1))
+        return [((((1.0 - al) * (1.0 - be)) * float(img[ja][ia][k])
+                  + (al * (1.0 - be)) * float(img[ja][ib][k]))
+                 + ((1.0 - al) * be) * float(img[jb][ia][k]))
+                + (al * be) * float(img[jb][ib][k]) for k in range(4)]
+    i = _texel_index(math.floor(u), w, wrap_s)
+    j = _texel_index(math.floor(v), h, wrap_t)
+    return [float(img[j][i][k]) for k in range(4)]
+
+
+def _mipmap_sample(texture, fil, s, t, rho2):
+    """The MIPMAP filters (§14): level of detail log2(rho2) / 2, nearest level or the
+    two around it, each sampled by point or bilinear, mixed (1 - f) a + f b."""
+    levels = _pyramid(texture)
+    top = len(levels) - 1
+    lam = min(0.5 * math.log2(rho2), 64.0)
+    bilinear = fil in (TEXF_MIPMAP_BILINEAR, TEXF_MIPMAP_TRILINEAR)
+    ws, wt = texture.wrap_s, texture.wrap_t
+    if fil in (TEXF_MIPMAP_POINT, TEXF_MIPMAP_BILINEAR):
+        d = 0 if lam <= 0.5 else math.ceil(lam + 0.5) - 1
+        return _sample(levels[min(d, top)], ws, wt, s, t, bilinear)
+    d = math.floor(lam)
+    if d >= top:
+        return _sample(levels[top], ws, wt, s, t, bilinear)
+    f = lam - d
+    a = _sample(levels[d], ws, wt, s, t, bilinear)
+    b = _sample(levels[d + 1], ws, wt, s, t, bilinear)
+    return [(1.0 - f) * a[k] + f * b[k] for k in range(4)]
+
+
 def _textured(tex, X, Y, rgba):
-    """The texture stage of one fragment (§13): perspective-correct s, t from the
+    """The texture stage of one fragment (§14): perspective-correct s, t from the
     s/w, t/w, 1/w planes, the filter chosen by the screen derivatives, the texel
     look-up and the environment.  Returns float components (rounded by the caller)."""
     b, (ps, pt, pq) = tex
@@ -545,31 +619,20 @@ def _textured(tex, X, Y, rgba):
     s = ps.at(X, Y) / q
     t = pt.at(X, Y) / q
     fil = texture.magfilter
+    rho2 = 0.0
     if texture.minfilter != texture.magfilter:
         dudx = w * (ps.dadx - s * pq.dadx) / q
         dvdx = h * (pt.dadx - t * pq.dadx) / q
         dudy = w * (ps.dady - s * pq.dady) / q
         dvdy = h * (pt.dady - t * pq.dady) / q
-        if max(dudx * dudx + dvdx * dvdx, dudy * dudy + dvdy * dvdy) > 1.0:
+        rho2 = max(dudx * dudx + dvdx * dvdx, dudy * dudy + dvdy * dvdy)
+        if rho2 > 1.0:
             fil = texture.minfilter
-    u = min(max(s * w, -1e15), 1e15)
-    v = min(max(t * h, -1e15), 1e15)
-    texels = texture.texels
-    if fil == TEXF_BILINEAR:
-        u -= 0.5
-        v -= 0.5
-        i0, j0 = math.floor(u), math.floor(v)
-        al, be = u - i0, v - j0
-        ia, ib = (_texel_index(i, w, texture.wrap_s) for i in (i0, i0 + 1))
-        ja, jb = (_texel_index(j, h, texture.wrap_t) for j in (j0, j0 + 1))
-        c = [((((1.0 - al) * (1.0 - be)) * float(texels[ja, ia, k])
-               + (al * (1.0 - be)) * float(texels[ja, ib, k]))
-              + ((1.0 - al) * be) * float(texels[jb, ia, k]))
-             + (al * be) * float(texels[jb, ib, k]) for k in range(4)]
+    if fil >= TEXF_MIPMAP_POINT:
+        c = _mipmap_sample(texture, fil, s, t, rho2)
     else:
-        i = _texel_index(math.floor(u), w, texture.wrap_s)
-        j = _texel_index(math.floor(v), h, texture.wrap_t)
-        c = [float(texels[j, i, k]) for k in range(4)]
+        c = _sample(texture.texels, texture.wrap_s, texture.wrap_t, s, t,
+                    fil == TEXF_BILINEAR)
     f = [float(x) for x in rgba]
     mode = b.env.mode
     if mode == TEV_DECAL:

@@ -62,7 +62,9 @@ class Frame:
         Per light, the stencil planes after its shadow faces ('shadows' mode: every
         light; 'mask' mode: the shown light; other modes and soft shadows: L = 0).
     stencil_zero : int
-        The stencil value that means "count zero" (lit), from GD_BITS_STENCIL.
+        The stencil value that means "count zero" (lit), from GD_BITS_STENCIL; in
+        'mask' mode 0, "no face crossed" (the planes hold the ins in their top half
+        and the outs in the bottom one: vgxsim.shadow.program.mask_fields).
     warnings : tuple of str
         E.g. the viewpoint-in-shadow report.
     """
@@ -347,9 +349,9 @@ def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
             swapbuffers()
             colour = read_pixels("front")[::-1].copy()
             depth = read_pixels("front", "z")[::-1].copy()
+            # mask mode counts ins and outs apart (program.mask_fields): 0 is "no face"
             zero = tech.lit_value(prog) if tech is not None and mode == "shadows" else (
-                prog.MYZERO) if mode != "mask" else (
-                (1 << (prog.stencil_bits - 1)) | (1 << (prog.stencil_bits - 2)))
+                prog.MYZERO) if mode != "mask" else 0
             stencil = (np.stack([planes[i] for i in sorted(planes)]) if planes
                        else np.zeros((0, h, w), np.uint8))
             out.append(Frame(colour, depth, stencil, zero, notes))

@@ -14,11 +14,11 @@ and draws one frame in each of the README's display modes:
   volume faces cover the scene, magenta at the pixels where you go out of shadow
   exactly as many times as you go into it, blue at the pixels where you have gone
   into shadow once more than you have gone out, and blue-green where you have gone
-  in two times more".  The README says this mode counts "the times gone in and the
-  times gone out, not just the running total" and so could overflow; here the top
-  stencil plane records that some face was crossed (ST_REPLACE under
-  ``swritemask``) and the planes below it count ins minus outs around their own
-  zero, which tells "clear" from "magenta" without the overflow;
+  in two times more".  As the README says of the original, this mode counts "the
+  times gone in and the times gone out, not just the running total": the top half
+  of the stencil planes counts the ins, the bottom half the outs
+  (:meth:`Shadows.draw_mask`, :func:`mask_fields`), so it can overflow as the
+  original's could;
 * ``'shadows'`` -- "Show Shadows": the article's code segment, transcribed line for
   line in :meth:`Shadows.draw_shadows` (see :mod:`vgxsim.examples.heidmann1991` for
   the corrections to the printed text and the ``faithful`` z reset).
@@ -534,33 +534,49 @@ class Shadows:
         self.draw_silhouettes(i)
 
     def draw_mask(self) -> None:
-        """README "Show Mask": the stencil after one light's shadow faces, in colour
-        (see the module docstring for how ins and outs are counted)."""
+        """README "Show Mask": one light's shadow faces counted in the stencil, ins and
+        outs apart, and shown in the README's colours (module docstring).
+
+        The stencil's top half counts the faces crossed going into shadow, the bottom
+        half those going out (:func:`mask_fields`).  ST_INCR adds 1 to the whole
+        value, so the ins are counted with the bottom half all ones and only the top
+        half writable (the carry lands there), then the bottom half is cleared and
+        counts the outs.  Overflow (README: "parts of the mask may be displayed
+        incorrectly or clear due to stencil overflow"): the ins stop at 15 (ST_INCR
+        clamps at 255); the outs wrap to 0 after 15 (the carry is masked off), except
+        when the ins are at 15 too, where they stop.  A pixel is painted where ins -
+        outs is 0 (magenta, ins > 0), 1 (blue) or 2 (blue-green); no face, or more
+        outs than ins, or three more ins, leaves the objects' image (clear)."""
         self.draw_objects()
         i = self.light_index
-        crossed = 1 << (self.stencil_bits - 1)        # top plane: some face was crossed
-        zero = 1 << (self.stencil_bits - 2)           # the planes below: ins - outs
+        shift, low = mask_fields(self.stencil_bits)
         faces, ingoing = self.volume_faces(i)
         zwritemask(0x0)
         wmpack(0x0)
-        sclear(zero)
-        swritemask(crossed)
-        stencil(TRUE, crossed, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, ST_REPLACE)
-        for quad in faces:
-            bgnpolygon(); v3f(quad[0]); v3f(quad[1]); v3f(quad[2]); v3f(quad[3]); endpolygon()
-        swritemask(crossed - 1)
-        if self.signs == "screen":
-            self.draw_faces_by_facing(faces)
-        else:
-            for quad, ing in zip(faces, ingoing, strict=True):
-                stencil(TRUE, 0, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, ST_INCR if ing else ST_DECR)
+        swritemask(0xffffffff)
+        sclear(low)                                   # ins 0, the outs' half all ones
+        for ins, field in ((True, low << shift), (False, low)):
+            swritemask(field)
+            if not ins:
+                sclear(0)                             # outs 0, the ins kept
+            stencil(TRUE, 0, SF_ALWAYS, 0xff, ST_KEEP, ST_KEEP, ST_INCR)
+            chosen = faces[ingoing == ins]
+            if self.signs == "screen":                # in: front-facing as drawn
+                cull = backface if ins else frontface
+                cull(TRUE)
+                chosen = faces
+            for quad in chosen:
                 bgnpolygon(); v3f(quad[0]); v3f(quad[1]); v3f(quad[2]); v3f(quad[3]); endpolygon()
+            if self.signs == "screen":
+                cull(FALSE)
         if self.stencil_hook is not None:
             self.stencil_hook(i)
         swritemask(0xffffffff)
         wmpack(0xffffffff)
-        self._paint_stencil(((crossed | zero, MASK_MAGENTA), (crossed | (zero + 1), MASK_BLUE),
-                             (crossed | (zero + 2), MASK_BLUEGREEN)))
+        colours = (MASK_MAGENTA, MASK_BLUE, MASK_BLUEGREEN)
+        self._paint_stencil(((outs + d) << shift | outs, colours[d])
+                            for outs in range(low + 1) for d in range(3)
+                            if outs + d <= low and outs + d > 0)
         self.draw_silhouettes(i)
 
     def _paint_stencil(self, values: Iterable[tuple[int, int]]) -> None:
@@ -596,6 +612,20 @@ class Shadows:
 # --------------------------------------------------------------------------------------
 # Soft shadows: jittered lights, accumulated in acbuf
 # --------------------------------------------------------------------------------------
+def mask_fields(stencil_bits: int) -> tuple[int, int]:
+    """The "Show Mask" stencil layout: (shift, field mask).  The ins are ``(value >>
+    shift) & field`` and the outs ``value & field``: the top and bottom halves of the
+    planes (4 bits each with the VGX's 8).
+
+    Parameters
+    ----------
+    stencil_bits : int
+        getgdesc(GD_BITS_STENCIL), at least 2.
+    """
+    shift = stencil_bits // 2
+    return shift, (1 << shift) - 1
+
+
 def random_offsets(scene: Scene, frames: int, seed: int = 1991) -> np.ndarray:
     """Per frame and light, a random offset inside the light's JITTER box.
 

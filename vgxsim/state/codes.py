@@ -99,11 +99,16 @@ CBLEND_REPLACE, CBLEND_ADD, CBLEND_SA_MSA, CBLEND_GENERAL = 0, 1, 2, 3
 
 # Columns of a batch's texture table (int64, one row per texture binding used):
 # texel offset into the flat texel array, width, height, components, filters
-# (TEXF_*), wraps (TEXW_*), environment (TEV_*).  docs/numeric_model.md s. 13.
+# (TEXF_*), wraps (TEXW_*), environment (TEV_*), mipmap levels (1: level 0 only;
+# the levels follow level 0 in the texel array).  docs/numeric_model.md s. 14.
 (X_OFFSET, X_WIDTH, X_HEIGHT, X_NC, X_MINFILTER, X_MAGFILTER, X_WRAP_S, X_WRAP_T,
- X_ENV) = range(9)
-X_SIZE = 9
+ X_ENV, X_LEVELS) = range(10)
+X_SIZE = 10
+# Filters; the MIPMAP ones (minification only) are TEXF_MIPMAP_POINT and up:
+# OpenGL's NEAREST_MIPMAP_NEAREST, NEAREST_MIPMAP_LINEAR, LINEAR_MIPMAP_NEAREST,
+# LINEAR_MIPMAP_LINEAR (MSDN "Translating texdef").
 TEXF_POINT, TEXF_BILINEAR = 0, 1
+TEXF_MIPMAP_POINT, TEXF_MIPMAP_LINEAR, TEXF_MIPMAP_BILINEAR, TEXF_MIPMAP_TRILINEAR = 2, 3, 4, 5
 TEXW_REPEAT, TEXW_CLAMP = 0, 1
 TEV_MODULATE, TEV_DECAL, TEV_BLEND = 0, 1, 2
 

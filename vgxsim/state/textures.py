@@ -9,7 +9,7 @@ state records like any other register and a batch packs only the bindings it use
 into arrays for the kernels (:func:`pack_bindings`).
 
 The texture contract (texel centres, perspective-correct coordinates, filters,
-wraps, environments) is docs/numeric_model.md section 13.
+wraps, environments) is docs/numeric_model.md section 14.
 """
 
 from __future__ import annotations
@@ -37,6 +37,9 @@ class Texture:
         TEXF_* (vgxsim.state.codes).
     wrap_s, wrap_t : int
         TEXW_*.
+    levels : tuple of ndarray, shape (H_k, W_k, 4), uint8
+        Mipmap levels 1, 2, .. down to 1 x 1 (:func:`mipmap_pyramid`); empty unless
+        the minification filter is a MIPMAP one.
     """
 
     texels: np.ndarray
@@ -45,6 +48,36 @@ class Texture:
     magfilter: int = C.TEXF_POINT
     wrap_s: int = C.TEXW_REPEAT
     wrap_t: int = C.TEXW_REPEAT
+    levels: tuple = ()
+
+
+def mipmap_pyramid(texels: np.ndarray) -> tuple:
+    """Mipmap levels 1.. of a (H, W, 4) uint8 image, by a 2 x 2 box filter (texdef(3G)).
+
+    Level k + 1 is ``max(W_k // 2, 1)`` x ``max(H_k // 2, 1)``; its texel (i, j) is the
+    mean of level k's texels (2i, 2j), (2i + 1, 2j), (2i, 2j + 1), (2i + 1, 2j + 1),
+    an index past the last column or row taken as the last (a level one texel wide
+    or high averages each texel with itself; an odd size drops its last column or
+    row), rounded half up: ``(a + b + c + d + 2) // 4`` per component.
+
+    Returns
+    -------
+    tuple of ndarray, shape (H_k, W_k, 4), uint8
+        Levels 1, 2, .. ending with 1 x 1; empty for a 1 x 1 image.
+    """
+    out = []
+    cur = np.asarray(texels, np.int64)
+    while cur.shape[0] > 1 or cur.shape[1] > 1:
+        h, w = cur.shape[:2]
+        nh, nw = max(h // 2, 1), max(w // 2, 1)
+        i0 = np.minimum(2 * np.arange(nw), w - 1)
+        i1 = np.minimum(2 * np.arange(nw) + 1, w - 1)
+        j0 = np.minimum(2 * np.arange(nh), h - 1)
+        j1 = np.minimum(2 * np.arange(nh) + 1, h - 1)
+        total = (cur[j0][:, i0] + cur[j0][:, i1]) + (cur[j1][:, i0] + cur[j1][:, i1])
+        cur = (total + 2) // 4
+        out.append(cur.astype(np.uint8))
+    return tuple(out)
 
 
 @dataclass(frozen=True)
@@ -56,16 +89,49 @@ class TexEnv:
     colour: tuple = (0.0, 0.0, 0.0, 0.0)
 
 
+# texgen(3G) modes of one coordinate, as TexGen stores them.
+GEN_LINEAR, GEN_CONTOUR, GEN_SPHEREMAP = "linear", "contour", "spheremap"
+
+
 @dataclass(frozen=True)
 class TexGen:
     """Texture-coordinate generation for s and t (texgen(3G)).
 
-    ``s_plane``/``t_plane`` are object-space planes (TG_LINEAR) when the coordinate's
-    generation is on, else None: that coordinate comes from t2*.
+    Per coordinate a mode (None: generation off, the coordinate comes from t2*) and
+    a plane (a, b, c, d):
+
+    * ``GEN_LINEAR`` (TG_LINEAR): an object-space plane, ``s = plane . (x, y, z, w)``;
+    * ``GEN_CONTOUR`` (TG_CONTOUR, OpenGL's GL_EYE_LINEAR): an eye-space plane, already
+      transformed by the inverse of the modelview in effect when texgen was called,
+      dotted with the eye-space vertex;
+    * ``GEN_SPHEREMAP`` (TG_SPHEREMAP, GL_SPHERE_MAP): no plane; the coordinate comes
+      from the eye-space reflection vector (docs/numeric_model.md s. 14).
     """
 
     s_plane: tuple | None = None
     t_plane: tuple | None = None
+    s_mode: str | None = None
+    t_mode: str | None = None
+
+    def __post_init__(self):
+        # A plane given without a mode is TG_LINEAR (the form TexGen(plane, plane)).
+        for k in ("s", "t"):
+            if getattr(self, f"{k}_mode") is None and getattr(self, f"{k}_plane") is not None:
+                object.__setattr__(self, f"{k}_mode", GEN_LINEAR)
+
+    def modes(self) -> tuple:
+        """(s mode, t mode), each a GEN_* or None."""
+        return self.s_mode, self.t_mode
+
+    def planes(self) -> tuple:
+        """(s plane, t plane), each a 4-tuple or None."""
+        return self.s_plane, self.t_plane
+
+    @property
+    def eye_space(self) -> bool:
+        """Whether a coordinate is generated in eye space (TG_CONTOUR, TG_SPHEREMAP):
+        the draw needs the modelview and, for the sphere map, the normals."""
+        return any(m in (GEN_CONTOUR, GEN_SPHEREMAP) for m in self.modes())
 
 
 @dataclass(frozen=True, eq=False)
@@ -116,7 +182,8 @@ def pack_bindings(ids: list[int]):
     env_colour : ndarray, shape (K, 4), float64
         TV_COLOR of each binding's environment, 0..255.
     texels : ndarray, shape (sum of H * W,), uint32
-        Every texture's texels, packed, row after row from the bottom.
+        Every texture's texels, packed, row after row from the bottom, each
+        texture's mipmap levels after its level 0.
     """
     info = np.zeros((max(len(ids), 1), C.X_SIZE), np.int64)
     env = np.zeros((max(len(ids), 1), 4), np.float64)
@@ -127,13 +194,15 @@ def pack_bindings(ids: list[int]):
         tex = b.texture
         h, w = tex.texels.shape[:2]
         info[k] = (offset, w, h, tex.nc, tex.minfilter, tex.magfilter, tex.wrap_s,
-                   tex.wrap_t, b.env.mode)
+                   tex.wrap_t, b.env.mode, 1 + len(tex.levels))
         env[k] = [float(c) * 255.0 for c in b.env.colour]
-        chunks.append(pack_rgba(tex.texels))
-        offset += h * w
+        for level in (tex.texels, *tex.levels):  # level k at offset + sizes of 0..k-1
+            chunks.append(pack_rgba(level))
+            offset += level.shape[0] * level.shape[1]
     texels = np.concatenate(chunks) if chunks else np.zeros(1, np.uint32)
     return info, env, np.ascontiguousarray(texels)
 
 
-__all__ = ["Texture", "TexEnv", "TexGen", "Binding", "binding_id", "binding",
-           "pack_bindings", "pack_rgba"]
+__all__ = ["Texture", "TexEnv", "TexGen", "GEN_LINEAR", "GEN_CONTOUR", "GEN_SPHEREMAP",
+           "Binding", "binding_id", "binding", "mipmap_pyramid", "pack_bindings",
+           "pack_rgba"]
