@@ -28,6 +28,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from vgxsim.kernels.lighting import LIGHT_COLUMNS, LMODEL_COLUMNS
+from vgxsim.kernels.lighting import light_vertices as light_vertices_kernel
+
 from .tables import (
     _LMC_AD,
     _LMC_AMBIENT,
@@ -58,6 +61,11 @@ _LMC_FIELDS: dict[int, tuple[tuple[str, ...], bool]] = {
 # specular highlight over the whole lit side; IRIS treats 0 as "no specular".  We
 # follow IGL's threshold exactly (so 0 < shininess < 1 is also off).
 _MIN_SHININESS = 1.0
+
+#: Fast-path switch: the lighting equation as one kernel pass over the vertices
+#: (kernels/lighting.py) instead of whole-array numpy operations per light.  False:
+#: the numpy form (tests/pipeline/test_batched_lighting.py: identical planes).
+JIT_LIGHTING = True
 
 _Vec = np.ndarray | Sequence[float] | None
 #: One entry of shade()'s ``lights``: (Light, position_eye (4,), spot_direction_eye (3,)).
@@ -325,6 +333,65 @@ def shade_runs(
 def _light_vertices(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
                     lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
     """The lighting equation for (N, 3) eye positions and unit normals."""
+    if JIT_LIGHTING:
+        return _light_vertices_jit(p, nrm, mat, lights, lmodel)
+    return _light_vertices_numpy(p, nrm, mat, lights, lmodel)
+
+
+def _per_vertex(term, n: int, width: int) -> np.ndarray:
+    """A material term, (3,) or scalar for all vertices or one per vertex, as a
+    C-contiguous (n, 3) or (n,) float64 array."""
+    shape = (n, width) if width else (n,)
+    return np.ascontiguousarray(np.broadcast_to(np.asarray(term, np.float64), shape))
+
+
+def _light_table(lights: Sequence[LightEntry]) -> np.ndarray:
+    """The kernel's light rows (kernels/lighting.py), derived as the numpy form
+    derives them: the same position, direction and spot-axis arithmetic."""
+    table = np.zeros((len(lights), LIGHT_COLUMNS))
+    for k, (light, pos_eye, spot_eye) in enumerate(lights):
+        pos = np.asarray(light.position if pos_eye is None else pos_eye, dtype=np.float64)
+        if pos.shape != (4,):
+            raise LightingError(f"shade: light position must have shape (4,), got {pos.shape}")
+        row = table[k]
+        if pos[3] != 0.0:
+            row[0] = 1.0
+            row[1:4] = pos[:3] / pos[3]
+        else:
+            row[1:4] = _normalize(pos[:3])
+        row[4:7] = np.asarray(light.lcolor, dtype=np.float64)
+        row[7:10] = np.asarray(light.ambient, dtype=np.float64)
+        if light.spot_spread < 180.0:
+            sdir = np.asarray(light.spot_direction if spot_eye is None else spot_eye,
+                              dtype=np.float64)
+            row[10] = 1.0
+            row[11:14] = _normalize(sdir.reshape(3))
+            row[14] = np.cos(np.radians(light.spot_spread))
+            row[15] = light.spot_exponent
+    return table
+
+
+def _light_vertices_jit(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
+                        lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
+    """:func:`_light_vertices_numpy` as one kernel pass (kernels/lighting.py)."""
+    n = p.shape[0]
+    lm = np.zeros(LMODEL_COLUMNS)
+    lm[0:3] = np.asarray(lmodel.ambient, dtype=np.float64)
+    lm[3] = 1.0 if lmodel.local_viewer else 0.0
+    lm[4], lm[5] = lmodel.attenuation
+    lm[6] = lmodel.attenuation2
+    return light_vertices_kernel(
+        np.ascontiguousarray(p, np.float64), np.ascontiguousarray(nrm, np.float64),
+        _per_vertex(mat.emission, n, 3), _per_vertex(mat.ambient, n, 3),
+        _per_vertex(mat.diffuse, n, 3), _per_vertex(mat.specular, n, 3),
+        _per_vertex(mat.shininess, n, 0), _per_vertex(mat.alpha, n, 0),
+        _light_table(lights), lm, _MIN_SHININESS)
+
+
+def _light_vertices_numpy(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
+                          lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
+    """The lighting equation as whole-array numpy operations (the reference form of
+    the kernel, and what :data:`JIT_LIGHTING` off runs)."""
     n_vert = p.shape[0]
     rgb = mat.emission + mat.ambient * np.asarray(lmodel.ambient, dtype=np.float64)
 
