@@ -26,9 +26,11 @@ from vgxsim.stream.opcodes import (
     P_V0,
     P_V1,
     PRIM_COLUMNS,
+    QSTRIP,
     STATE,
     SWAP,
     SYNC,
+    TMESH,
     C,
     N,
     T,
@@ -169,3 +171,97 @@ def _int_payload(op):
     if op == BGN or op == STATE:
         return 1
     return 0
+
+
+@jit
+def assemble_triangles(block, base, swaps):
+    """Triangles of consecutive triangle primitives (rows of the decoded primitive
+    table), as vgxsim.geometry.assembly assembles each kind: a polygon (or pmv) is
+    fanned from its first vertex, (0, i, i + 1), its last vertex provoking
+    (shademodel(3G)); a tmesh keeps two saved vertices, each new one replacing the
+    older, swaptmesh exchanging them (and the winding parity, so a fan faces one way),
+    its newest vertex provoking; a qstrip makes (q, q + 1, q + 3) and (q, q + 3, q + 2)
+    per quad, q + 3 provoking.
+
+    Parameters
+    ----------
+    block : ndarray, shape (P, PRIM_COLUMNS), int64
+    base : int
+        Vertex index the returned indices count from.
+    swaps : ndarray, shape (S,), int64
+        The stream's swaptmesh positions (rows name their range).
+
+    Returns
+    -------
+    tris : ndarray, shape (T, 3), int64
+    prov : ndarray, shape (T,), int64
+        The flat-shading vertex of each triangle.
+    recs : ndarray, shape (T,), int64
+        The row of ``block`` each triangle comes from.
+    """
+    n = 0
+    for r in range(block.shape[0]):
+        count = block[r, P_V1] - block[r, P_V0]
+        kind = block[r, P_KIND]
+        if kind == QSTRIP:
+            if count >= 4:
+                n += 2 * ((count - 4) // 2 + 1)
+        elif count >= 3:
+            n += count - 2
+    tris = np.empty((n, 3), np.int64)
+    prov = np.empty(n, np.int64)
+    recs = np.empty(n, np.int64)
+    t = 0
+    for r in range(block.shape[0]):
+        kind = block[r, P_KIND]
+        off = block[r, P_V0] - base
+        count = block[r, P_V1] - block[r, P_V0]
+        if kind == TMESH:
+            t = _tmesh(tris, prov, recs, t, r, off, count,
+                       np.sort(swaps[block[r, P_SWAP0]:block[r, P_SWAP1]]))
+        elif kind == QSTRIP:
+            for q in range(0, count - 3, 2):
+                tris[t, 0], tris[t, 1], tris[t, 2] = off + q, off + q + 1, off + q + 3
+                tris[t + 1, 0], tris[t + 1, 1], tris[t + 1, 2] = off + q, off + q + 3, off + q + 2
+                prov[t] = prov[t + 1] = off + q + 3
+                recs[t] = recs[t + 1] = r
+                t += 2
+        else:
+            for i in range(1, count - 1):
+                tris[t, 0], tris[t, 1], tris[t, 2] = off, off + i, off + i + 1
+                prov[t] = off + count - 1
+                recs[t] = r
+                t += 1
+    return tris, prov, recs
+
+
+@jit
+def _tmesh(tris, prov, recs, t, r, off, count, swap_at):
+    """One tmesh's triangles into rows ``t ..``; returns the next free row."""
+    s0, s1 = -1, -1  # s0 is replaced next
+    replace_slot = 0
+    si = 0
+    for v in range(count):
+        while si < swap_at.shape[0] and swap_at[si] == v:
+            s0, s1 = s1, s0
+            if s0 >= 0 and s1 >= 0:
+                replace_slot ^= 1
+            si += 1
+        if s0 >= 0 and s1 >= 0:
+            if replace_slot == 0:
+                tris[t, 0], tris[t, 1] = off + s0, off + s1
+            else:
+                tris[t, 0], tris[t, 1] = off + s1, off + s0
+            tris[t, 2] = off + v
+            prov[t] = off + v
+            recs[t] = r
+            t += 1
+        if s0 < 0:
+            s0 = v
+        elif s1 < 0:
+            s1 = v
+        else:
+            s0 = s1
+            s1 = v
+            replace_slot ^= 1
+    return t

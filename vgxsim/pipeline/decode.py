@@ -11,9 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from vgxsim.geometry import assembly
 from vgxsim.geometry.transform import apply
-from vgxsim.kernels.decode import decode_stream
+from vgxsim.kernels.decode import assemble_triangles, decode_stream
 from vgxsim.kernels.texture import decode_texcoords
 from vgxsim.stream.opcodes import (
     CLOSEDLINE,
@@ -22,10 +21,6 @@ from vgxsim.stream.opcodes import (
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
-    P_SWAP0,
-    P_SWAP1,
-    P_V0,
-    P_V1,
     PMV,
     POINT,
     POLYGON,
@@ -38,8 +33,6 @@ from .draw import defer_triangles, draw_arrays
 
 _TRIANGLES = np.zeros(16, bool)
 _TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
-_POLYGONS = np.zeros(16, bool)
-_POLYGONS[[POLYGON, PMV]] = True
 
 
 def drain(ctx) -> None:
@@ -169,54 +162,10 @@ def _wants_colour(state) -> bool:
 
 def _group_triangles(block: np.ndarray, base: int, swaps: np.ndarray):
     """Triangles (indices from ``base``), flat-shading vertices and primitive (its row
-    in ``block``) of consecutive primitives (rows of the decoded primitive table):
-    each run of polygons is fanned in one vectorized step, each as
-    assembly.polygon_fan fans it (first vertex, i, i + 1; the last vertex provokes)."""
-    poly = _POLYGONS[block[:, P_KIND]]
-    n = block.shape[0]
-    cuts = np.flatnonzero(~(poly[1:] & poly[:-1])) + 1  # a run of polygons, or one row
-    bounds = [0, *cuts.tolist(), n]
-    tris, prov, recs = [], [], []
-    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
-        if poly[a]:
-            start = block[a:b, P_V0] - base
-            size = block[a:b, P_V1] - block[a:b, P_V0]
-            t, pv, ntri = _fans(start, size)
-            tris.append(t)
-            prov.append(pv)
-            recs.append(np.repeat(np.arange(a, b, dtype=np.int64), ntri))
-            continue
-        kind, v0, v1, s0, s1 = (int(block[a, c]) for c in (P_KIND, P_V0, P_V1, P_SWAP0,
-                                                            P_SWAP1))
-        if v1 == v0:
-            continue
-        count = v1 - v0
-        off = v0 - base
-        if kind == TMESH:
-            t = assembly.tmesh_triangles(count, swaps[s0:s1].tolist())
-            pv = t[:, 2].copy()
-        else:
-            t = assembly.qstrip_triangles(count)
-            pv = t.max(axis=1) if t.shape[0] else np.zeros(0, np.int64)
-        t = np.asarray(t, np.int64).reshape(-1, 3)
-        tris.append(t + off)
-        prov.append(np.asarray(pv, np.int64) + off)
-        recs.append(np.full(t.shape[0], a, np.int64))
-    if not tris:
-        return np.zeros((0, 3), np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64)
-    return (np.concatenate(tris).astype(np.int64), np.concatenate(prov).astype(np.int64),
-            np.concatenate(recs))
-
-
-def _fans(start: np.ndarray, size: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Fan triangles (first, i, i + 1) of consecutive polygons given by their first
-    vertex and size (int64 arrays), in order, with each polygon's last vertex as the
-    flat-shading vertex; and the number of triangles of each polygon."""
-    ntri = np.maximum(size - 2, 0)
-    first = np.repeat(start, ntri)
-    k = np.arange(int(ntri.sum()), dtype=np.int64) - np.repeat(np.cumsum(ntri) - ntri, ntri)
-    tris = np.stack([first, first + 1 + k, first + 2 + k], axis=1)
-    return tris, np.repeat(start + size - 1, ntri), ntri
+    in ``block``) of consecutive triangle primitives, in one kernel pass
+    (:func:`vgxsim.kernels.decode.assemble_triangles`, which assembles each kind as
+    :mod:`vgxsim.geometry.assembly` does)."""
+    return assemble_triangles(np.ascontiguousarray(block), base, swaps)
 
 
 __all__ = ["drain", "LINE", "CLOSEDLINE", "POINT"]
