@@ -70,64 +70,138 @@ def light_vertices(p, nrm, emission, ambient, diffuse, specular, shininess, alph
     """
     n = p.shape[0]
     out = np.empty((n, 4))
+    rgb = np.empty(3)
+    for i in range(n):
+        _shade_vertex(out, i, p[i, 0], p[i, 1], p[i, 2], nrm[i, 0], nrm[i, 1], nrm[i, 2],
+                      emission, ambient, diffuse, specular, shininess, alpha, i, lights,
+                      lmodel, min_shininess, rgb)
+    return out
+
+
+@jit
+def light_object_runs(obj, normals, colours, lit, run, modelview, normal_matrix, emission,
+                      ambient, diffuse, specular, shininess, alpha, lights, lmodel,
+                      min_shininess):
+    """Colours of vertices given in object space, in runs that each have their own
+    modelview and material, under the same lights: what
+    ``vgxsim.lighting.shade_runs`` gives the lit vertices after
+    ``vgxsim.geometry.transform.apply`` took them to eye space, and the colour as
+    given for the others.
+
+    Parameters
+    ----------
+    obj : ndarray, shape (N, 4), float64
+        Object-space positions.
+    normals : ndarray, shape (N, 3), float64
+        Object-space normals (normalised here, after the normal matrix).
+    colours : ndarray, shape (N, 4), float64
+        The current colour per vertex (kept where ``lit`` is False).
+    lit : ndarray, shape (N,), bool
+    run : ndarray, shape (N,), int64
+        Each vertex's run.
+    modelview : ndarray, shape (R, 4, 4); normal_matrix : ndarray, shape (R, 3, 3)
+        Per run, row vectors (``p @ M``).
+    emission, ambient, diffuse, specular : ndarray, shape (R, 3), float64
+    shininess, alpha : ndarray, shape (R,), float64
+        Per run, its material.
+    lights, lmodel, min_shininess
+        As for :func:`light_vertices`.
+
+    Returns
+    -------
+    ndarray, shape (N, 4), float64
+    """
+    n = obj.shape[0]
+    out = np.empty((n, 4))
+    rgb = np.empty(3)
+    for i in range(n):
+        if not lit[i]:
+            for c in range(4):
+                out[i, c] = colours[i, c]
+            continue
+        r = run[i]
+        m = modelview[r]
+        p0, p1, p2, p3 = obj[i, 0], obj[i, 1], obj[i, 2], obj[i, 3]
+        # transform.apply's order: ((p0*m0j + p1*m1j) + p2*m2j) + p3*m3j.
+        ex = ((p0 * m[0, 0] + p1 * m[1, 0]) + p2 * m[2, 0]) + p3 * m[3, 0]
+        ey = ((p0 * m[0, 1] + p1 * m[1, 1]) + p2 * m[2, 1]) + p3 * m[3, 1]
+        ez = ((p0 * m[0, 2] + p1 * m[1, 2]) + p2 * m[2, 2]) + p3 * m[3, 2]
+        ew = ((p0 * m[0, 3] + p1 * m[1, 3]) + p2 * m[2, 3]) + p3 * m[3, 3]
+        if ew == 0.0:
+            ew = 1.0
+        q = normal_matrix[r]
+        n0, n1, n2 = normals[i, 0], normals[i, 1], normals[i, 2]
+        nx = (n0 * q[0, 0] + n1 * q[1, 0]) + n2 * q[2, 0]
+        ny = (n0 * q[0, 1] + n1 * q[1, 1]) + n2 * q[2, 1]
+        nz = (n0 * q[0, 2] + n1 * q[1, 2]) + n2 * q[2, 2]
+        length = math.sqrt(nx * nx + ny * ny + nz * nz)
+        if length > 0.0:
+            nx, ny, nz = nx / length, ny / length, nz / length
+        else:
+            nx, ny, nz = 0.0, 0.0, 0.0
+        _shade_vertex(out, i, ex / ew, ey / ew, ez / ew, nx, ny, nz, emission, ambient,
+                      diffuse, specular, shininess, alpha, r, lights, lmodel, min_shininess,
+                      rgb)
+    return out
+
+
+@jit
+def _shade_vertex(out, i, px, py, pz, nx, ny, nz, emission, ambient, diffuse, specular,
+                  shininess, alpha, mi, lights, lmodel, min_shininess, rgb):
+    """The equation for one vertex (eye position, unit normal, material row ``mi``)
+    into ``out[i]``; ``rgb`` is scratch (3,)."""
     local_viewer = lmodel[3] != 0.0
     k0, k1, k2 = lmodel[4], lmodel[5], lmodel[6]
-    rgb = np.empty(3)
-    ldir = np.empty(3)
-    for i in range(n):
-        for c in range(3):
-            rgb[c] = emission[i, c] + ambient[i, c] * lmodel[c]
-        if local_viewer:
-            vx, vy, vz = -p[i, 0], -p[i, 1], -p[i, 2]
-            vlen = math.sqrt(vx * vx + vy * vy + vz * vz)
-            if vlen > 0.0:
-                vx, vy, vz = vx / vlen, vy / vlen, vz / vlen
-            else:
-                vx, vy, vz = 0.0, 0.0, 0.0
+    for c in range(3):
+        rgb[c] = emission[mi, c] + ambient[mi, c] * lmodel[c]
+    if local_viewer:
+        vx, vy, vz = -px, -py, -pz
+        vlen = math.sqrt(vx * vx + vy * vy + vz * vz)
+        if vlen > 0.0:
+            vx, vy, vz = vx / vlen, vy / vlen, vz / vlen
         else:
-            vx, vy, vz = 0.0, 0.0, 1.0
-        nx, ny, nz = nrm[i, 0], nrm[i, 1], nrm[i, 2]
-        spec_on = shininess[i] >= min_shininess
-        for k in range(lights.shape[0]):
-            if lights[k, 0] != 0.0:
-                tx = lights[k, 1] - p[i, 0]
-                ty = lights[k, 2] - p[i, 1]
-                tz = lights[k, 3] - p[i, 2]
-                dist = math.sqrt(tx * tx + ty * ty + tz * tz)
-                if dist > 0.0:
-                    ldir[0], ldir[1], ldir[2] = tx / dist, ty / dist, tz / dist
-                else:
-                    ldir[0], ldir[1], ldir[2] = 0.0, 0.0, 0.0
-                denom = k0 + k1 * dist + k2 * dist * dist
-                factor = 1.0 / denom if denom > 0.0 else 0.0
+            vx, vy, vz = 0.0, 0.0, 0.0
+    else:
+        vx, vy, vz = 0.0, 0.0, 1.0
+    spec_on = shininess[mi] >= min_shininess
+    for k in range(lights.shape[0]):
+        if lights[k, 0] != 0.0:
+            tx = lights[k, 1] - px
+            ty = lights[k, 2] - py
+            tz = lights[k, 3] - pz
+            dist = math.sqrt(tx * tx + ty * ty + tz * tz)
+            if dist > 0.0:
+                lx, ly, lz = tx / dist, ty / dist, tz / dist
             else:
-                ldir[0], ldir[1], ldir[2] = lights[k, 1], lights[k, 2], lights[k, 3]
-                factor = 1.0
-            if lights[k, 10] != 0.0:
-                cos_a = -(ldir[0] * lights[k, 11] + ldir[1] * lights[k, 12]
-                          + ldir[2] * lights[k, 13])
-                if cos_a >= lights[k, 14]:
-                    factor = factor * max(cos_a, 0.0) ** lights[k, 15]
-                else:
-                    factor = factor * 0.0
-            n_dot_l = nx * ldir[0] + ny * ldir[1] + nz * ldir[2]
-            diff = max(n_dot_l, 0.0)
-            hx, hy, hz = ldir[0] + vx, ldir[1] + vy, ldir[2] + vz
-            hlen = math.sqrt(hx * hx + hy * hy + hz * hz)
-            if hlen > 0.0:
-                hx, hy, hz = hx / hlen, hy / hlen, hz / hlen
+                lx, ly, lz = 0.0, 0.0, 0.0
+            denom = k0 + k1 * dist + k2 * dist * dist
+            factor = 1.0 / denom if denom > 0.0 else 0.0
+        else:
+            lx, ly, lz = lights[k, 1], lights[k, 2], lights[k, 3]
+            factor = 1.0
+        if lights[k, 10] != 0.0:
+            cos_a = -(lx * lights[k, 11] + ly * lights[k, 12] + lz * lights[k, 13])
+            if cos_a >= lights[k, 14]:
+                factor = factor * max(cos_a, 0.0) ** lights[k, 15]
             else:
-                hx, hy, hz = 0.0, 0.0, 0.0
-            n_dot_h = max(nx * hx + ny * hy + nz * hz, 0.0)
-            spec = 0.0
-            if spec_on and n_dot_l > 0.0:
-                spec = n_dot_h ** shininess[i]
-            for c in range(3):
-                lc = lights[k, 4 + c]
-                term = (ambient[i, c] * lights[k, 7 + c] + diff * diffuse[i, c] * lc
-                        + spec * specular[i, c] * lc)
-                rgb[c] = rgb[c] + factor * term
+                factor = factor * 0.0
+        n_dot_l = nx * lx + ny * ly + nz * lz
+        diff = max(n_dot_l, 0.0)
+        hx, hy, hz = lx + vx, ly + vy, lz + vz
+        hlen = math.sqrt(hx * hx + hy * hy + hz * hz)
+        if hlen > 0.0:
+            hx, hy, hz = hx / hlen, hy / hlen, hz / hlen
+        else:
+            hx, hy, hz = 0.0, 0.0, 0.0
+        n_dot_h = max(nx * hx + ny * hy + nz * hz, 0.0)
+        spec = 0.0
+        if spec_on and n_dot_l > 0.0:
+            spec = n_dot_h ** shininess[mi]
         for c in range(3):
-            out[i, c] = min(max(rgb[c], 0.0), 1.0)
-        out[i, 3] = min(max(alpha[i], 0.0), 1.0)
-    return out
+            lc = lights[k, 4 + c]
+            term = (ambient[mi, c] * lights[k, 7 + c] + diff * diffuse[mi, c] * lc
+                    + spec * specular[mi, c] * lc)
+            rgb[c] = rgb[c] + factor * term
+    for c in range(3):
+        out[i, c] = min(max(rgb[c], 0.0), 1.0)
+    out[i, 3] = min(max(alpha[mi], 0.0), 1.0)

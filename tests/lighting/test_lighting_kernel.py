@@ -140,3 +140,35 @@ def test_switch_gives_identical_planes_on_random_calls(seed, monkeypatch):
     session.reset()
     for k in a:
         assert np.array_equal(a[k], b[k]), k
+
+
+def test_object_runs_light_what_eye_space_and_shade_give(monkeypatch):
+    # Independent expectation: each run's lit vertices taken to eye space by numpy
+    # (p @ M, divided by w), normals by the normal matrix, lit by shade() with that
+    # run's material; unlit vertices keep their colour.
+    from vgxsim.lighting import shade_object_runs
+
+    rng = np.random.default_rng(12)
+    pos, nrm, _mat, lights, lmodel = _scene(rng)
+    n = pos.shape[0]
+    obj = np.concatenate([pos, rng.choice([1.0, 2.0], (n, 1))], axis=1)
+    cols = rng.random((n, 4))
+    lit = rng.random(n) < 0.7
+    counts = [n // 2, n - n // 2]
+    mvs = [np.eye(4), np.eye(4) * 0.5 + np.diag([0.0, 0.0, 0.0, 0.5])]
+    mvs[1][3, :3] = (1.0, -2.0, 0.5)
+    nms = [np.eye(3), np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 2.0]])]
+    mats = [Material(), Material(diffuse=(0.2, 0.4, 0.9), specular=(1.0, 1.0, 1.0),
+                                 shininess=20.0)]
+    want = cols.copy()
+    at = 0
+    for k, c in enumerate(counts):
+        sel = np.zeros(n, bool)
+        sel[at:at + c] = lit[at:at + c]
+        eye = obj[sel] @ mvs[k]
+        want[sel] = shade(eye[:, :3] / eye[:, 3:4], nrm[sel] @ nms[k], mats[k], lights, lmodel)
+        at += c
+    fast, slow = _both(monkeypatch, shade_object_runs, obj, nrm, cols, lit, counts, mvs, nms,
+                       mats, lights, lmodel)
+    np.testing.assert_allclose(fast, want, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(slow, want, rtol=0, atol=1e-12)

@@ -29,7 +29,9 @@ from typing import NamedTuple
 import numpy as np
 
 from vgxsim.kernels.lighting import LIGHT_COLUMNS, LMODEL_COLUMNS
+from vgxsim.kernels.lighting import light_object_runs as light_object_runs_kernel
 from vgxsim.kernels.lighting import light_vertices as light_vertices_kernel
+from vgxsim.kernels.transform import transform_points
 
 from .tables import (
     _LMC_AD,
@@ -330,6 +332,88 @@ def shade_runs(
     return _light_vertices(p, nrm, _MatArrays(**terms), lights, lmodel)
 
 
+def shade_object_runs(
+    obj: np.ndarray,
+    normals: np.ndarray,
+    colours: np.ndarray,
+    lit: np.ndarray,
+    counts: Sequence[int],
+    modelviews: Sequence[np.ndarray],
+    normal_matrices: Sequence[np.ndarray],
+    materials: Sequence[Material],
+    lights: Sequence[LightEntry],
+    lmodel: LightModel,
+) -> np.ndarray:
+    """Vertex colours of runs of object-space vertices, each run with its own
+    modelview, normal matrix and material, under the same lights: the lit vertices
+    taken to eye space (``p @ M`` in transform.apply's order, divided by w unless it
+    is 0) and lit by :func:`shade_runs`, the others keeping their colour.
+
+    Parameters
+    ----------
+    obj : ndarray, shape (N, 4), float64
+    normals : ndarray, shape (N, 3), float64
+        Object-space normals.
+    colours : ndarray, shape (N, 4), float64
+    lit : ndarray, shape (N,), bool
+    counts : sequence of int
+        Vertices in each run (summing to N).
+    modelviews : sequence of ndarray, shape (4, 4); normal_matrices : of shape (3, 3)
+    materials : sequence of Material
+    lights, lmodel
+        As for :func:`shade_runs` (one-sided lighting).
+
+    Returns
+    -------
+    ndarray, shape (N, 4), float64
+    """
+    if lmodel.twoside:
+        raise LightingError("shade_object_runs: two-sided lighting is lit per run (shade)")
+    reps = np.asarray(counts, dtype=np.int64)
+    terms = {name: np.array([getattr(m, name) for m in materials], np.float64)
+             for name in _MatArrays._fields}  # one row per run
+    if JIT_LIGHTING:
+        return light_object_runs_kernel(
+            np.ascontiguousarray(obj, np.float64), np.ascontiguousarray(normals, np.float64),
+            np.ascontiguousarray(colours, np.float64), np.ascontiguousarray(lit, np.bool_),
+            np.repeat(np.arange(reps.shape[0], dtype=np.int64), reps),
+            np.ascontiguousarray(modelviews, np.float64),
+            np.ascontiguousarray(normal_matrices, np.float64), terms["emission"],
+            terms["ambient"], terms["diffuse"], terms["specular"], terms["shininess"],
+            terms["alpha"], _light_table(lights), _lmodel_row(lmodel), _MIN_SHININESS)
+    out = np.array(colours, dtype=np.float64)
+    lit = np.asarray(lit, bool)
+    if not lit.any():
+        return out
+    eye_p, eye_n, lit_mats = [], [], {name: [] for name in _MatArrays._fields}
+    at = 0
+    for k, c in enumerate(reps.tolist()):
+        sel = lit[at:at + c]
+        eye = transform_points(np.ascontiguousarray(obj[at:at + c][sel], np.float64),
+                               np.ascontiguousarray(modelviews[k], np.float64))
+        eye_p.append(eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4]))
+        eye_n.append(transform_points(np.ascontiguousarray(normals[at:at + c][sel],
+                                                           np.float64),
+                                      np.ascontiguousarray(normal_matrices[k], np.float64)))
+        for name in _MatArrays._fields:
+            lit_mats[name].append(np.repeat(terms[name][k:k + 1], int(sel.sum()), axis=0))
+        at += c
+    mat = _MatArrays(**{name: np.concatenate(v) for name, v in lit_mats.items()})
+    out[lit] = _light_vertices_numpy(np.concatenate(eye_p), _normalize(np.concatenate(eye_n)),
+                                     mat, lights, lmodel)
+    return out
+
+
+def _lmodel_row(lmodel: LightModel) -> np.ndarray:
+    """The kernel's light-model row (kernels/lighting.py LMODEL_COLUMNS)."""
+    lm = np.zeros(LMODEL_COLUMNS)
+    lm[0:3] = np.asarray(lmodel.ambient, dtype=np.float64)
+    lm[3] = 1.0 if lmodel.local_viewer else 0.0
+    lm[4], lm[5] = lmodel.attenuation
+    lm[6] = lmodel.attenuation2
+    return lm
+
+
 def _light_vertices(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
                     lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
     """The lighting equation for (N, 3) eye positions and unit normals."""
@@ -375,17 +459,12 @@ def _light_vertices_jit(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
                         lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
     """:func:`_light_vertices_numpy` as one kernel pass (kernels/lighting.py)."""
     n = p.shape[0]
-    lm = np.zeros(LMODEL_COLUMNS)
-    lm[0:3] = np.asarray(lmodel.ambient, dtype=np.float64)
-    lm[3] = 1.0 if lmodel.local_viewer else 0.0
-    lm[4], lm[5] = lmodel.attenuation
-    lm[6] = lmodel.attenuation2
     return light_vertices_kernel(
         np.ascontiguousarray(p, np.float64), np.ascontiguousarray(nrm, np.float64),
         _per_vertex(mat.emission, n, 3), _per_vertex(mat.ambient, n, 3),
         _per_vertex(mat.diffuse, n, 3), _per_vertex(mat.specular, n, 3),
         _per_vertex(mat.shininess, n, 0), _per_vertex(mat.alpha, n, 0),
-        _light_table(lights), lm, _MIN_SHININESS)
+        _light_table(lights), _lmodel_row(lmodel), _MIN_SHININESS)
 
 
 def _light_vertices_numpy(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
