@@ -165,12 +165,12 @@ def begin(ctx, name: str, args: tuple, prim: str) -> None:
         raise GLUsageError(f"{describe(name, args)}: {OPENER[ctx.prim]}() is still open "
                            f"(call {CLOSER[ctx.prim]}() first)")
     st = ctx.stream
-    if len(st.ops) > MAX_STREAM_OPS:
+    if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
         drain(ctx)
     _restate(ctx, st)
     ctx.prim = prim
-    st.open_ops = len(st.ops)
-    st.open_fl = len(st.fl)
+    st.open_ops = st.parts_ops + len(st.ops)
+    st.open_fl = st.parts_fl + len(st.fl)
     st.ops.append(BGN)
     st.ops.append(KIND_OF[prim])
 
@@ -281,13 +281,14 @@ def _bgn(prim: str):
         if ctx is None or ctx.prim is not None:
             begin(current(name, args), name, args, prim)  # raises
         st = ctx.stream
-        if len(st.ops) > MAX_STREAM_OPS:
+        ops = st.ops
+        if st.parts_ops + len(ops) > MAX_STREAM_OPS:
             drain(ctx)
+            ops = st.ops
         _restate(ctx, st)
         ctx.prim = prim
-        ops = st.ops
-        st.open_ops = len(ops)
-        st.open_fl = len(st.fl)
+        st.open_ops = st.parts_ops + len(ops)
+        st.open_fl = st.parts_fl + len(st.fl)
         ops.append(BGN)
         ops.append(code)
 

@@ -633,9 +633,8 @@ def splice(ctx, ch: Chunk) -> None:
     if ch.touched_prim and ctx.prim is None:
         _restate(ctx, st)
     sync(ctx, st)
-    base_ops, base_fl = len(st.ops), len(st.fl)
-    st.ops.extend(ch.ops_for(colour_op))
-    st.fl.extend(ch.fl)
+    base_ops, base_fl = len(st), st.n_floats()
+    st.splice(*ch.arrays_for(colour_op))
     if ch.touched_prim:
         ctx.prim = ch.open
         if ch.open is not None:

@@ -177,7 +177,7 @@ class Context:
         """The command batch, after decoding the command stream and queuing any
         deferred triangle draws (so every user of the batch sees primitives in
         drawing order)."""
-        if len(self.stream.ops):
+        if len(self.stream):
             drain(self)
         if self.pending_triangles is not None:
             commit_triangles(self)
@@ -223,7 +223,7 @@ class Context:
             Triangles only: per-vertex (s, t), as t2* gives them (docs/numeric_model.md
             s. 13; texgen replaces the coordinates it generates).
         """
-        if len(self.stream.ops):
+        if len(self.stream):
             drain(self)  # what the stream holds was drawn first
         pipeline_draw_arrays(self, self.draw_state(), self.lmcolor_set, kind, obj, colours,
                              normals, lit, swaps, indices, provoking, pattern_offset,

@@ -38,22 +38,17 @@ _TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
 def drain(ctx) -> None:
     """Decode and draw the window's stream up to its open primitive, if any."""
     s = ctx.stream
-    nops = len(s.ops)
+    nops = len(s)
     if nops == 0:
         return
-    cut_ops, cut_fl = (s.open_ops, s.open_fl) if ctx.prim is not None else (nops, len(s.fl))
+    cut_ops, cut_fl = (s.open_ops, s.open_fl) if ctx.prim is not None else (nops, s.n_floats())
     if cut_ops <= 0:
         return
-    ops = np.array(s.ops, dtype=np.int64)
-    fl = np.array(s.fl, dtype=np.float64) if s.fl else np.zeros(0)
+    ops, fl = s.arrays()
     pos, col, nrm, sent, prims, swaps = decode_stream(ops, cut_ops, fl, s.attrs)
     tc = decode_texcoords(ops, cut_ops, fl, s.tex_attrs) if s.has_texcoords else None
-    if cut_ops == nops:
-        s.ops = []
-        s.fl = []
-    else:
-        s.ops = s.ops[cut_ops:]
-        s.fl = s.fl[cut_fl:]
+    s.keep_from(ops, fl, cut_ops, cut_fl)
+    if cut_ops < nops:
         s.open_ops, s.open_fl = 0, 0
     records = ctx.states.records
     _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc)
