@@ -634,7 +634,7 @@ def splice(ctx, ch: Chunk) -> None:
         _restate(ctx, st)
     sync(ctx, st)
     base_ops, base_fl = len(st), st.n_floats()
-    st.splice(*ch.arrays_for(colour_op))
+    st.splice(ch, colour_op)
     if ch.touched_prim:
         ctx.prim = ch.open
         if ch.open is not None:

@@ -12,7 +12,9 @@ the flush costs about 18 ns a float.
 A display object's chunk is converted once, when it is first called: ``callobj``
 appends the chunk's int64 and float64 arrays to the stream's ``parts`` (after the
 lists recorded before it), so replaying the 1991 program's 640-vertex floor neither
-copies its floats into the lists nor converts them again at every flush.
+copies its floats into the lists nor converts them again at every flush.  A chunk of
+fewer than :data:`SPLICE_MIN_FLOATS` floats is copied into the lists instead: one
+more part costs more at the flush (about 1 us) than copying a quad's numbers.
 """
 
 from __future__ import annotations
@@ -26,6 +28,8 @@ ATTRS = 11
 #: A stream holding more opcodes than this is decoded at the next bgn* (a "full
 #: stream" flush: memory stays bounded for programs that never read back).
 MAX_STREAM_OPS = 1 << 20
+#: Chunks with at least this many floats are spliced as arrays (see the docstring).
+SPLICE_MIN_FLOATS = 256
 
 
 class CommandStream:
@@ -82,8 +86,13 @@ class CommandStream:
         """Floats in the whole stream (``parts`` and ``fl``)."""
         return self.parts_fl + len(self.fl)
 
-    def splice(self, ops: np.ndarray, fl: np.ndarray) -> None:
-        """Append a chunk's arrays (callobj) after what the lists hold."""
+    def splice(self, chunk: Chunk, colour_op: int) -> None:
+        """Append a display-object chunk (callobj), its colour calls as ``colour_op``."""
+        ops, fl, ops_list = chunk.arrays_for(colour_op)
+        if fl.shape[0] < SPLICE_MIN_FLOATS:
+            self.ops.extend(ops_list)
+            self.fl.extend(chunk.fl)
+            return
         if self.ops or self.fl:
             self.parts.append((self.ops, self.fl))
             self.parts_ops += len(self.ops)
@@ -157,10 +166,11 @@ class Chunk:
         self.gpos: tuple | None = None
         self._variants: dict[tuple, tuple] = {}
 
-    def arrays_for(self, colour_op: int) -> tuple[np.ndarray, np.ndarray]:
+    def arrays_for(self, colour_op: int) -> tuple[np.ndarray, np.ndarray, list]:
         """The chunk's opcodes, with every CRAW rewritten to ``colour_op``, and its
-        floats, as read-only int64 and float64 arrays (made once per colour op and
-        length: a chunk grows only while its object is recorded)."""
+        floats, as read-only int64 and float64 arrays, and the opcodes as a list
+        (made once per colour op and length: a chunk grows only while its object is
+        recorded)."""
         key = (colour_op if self.last_colour is not None else -1, len(self.ops), len(self.fl))
         out = self._variants.get(key)
         if out is None:
@@ -178,11 +188,11 @@ class Chunk:
             floats = np.array(self.fl, dtype=np.float64)
             codes.flags.writeable = False
             floats.flags.writeable = False
-            out = self._variants[key] = (codes, floats)
+            out = self._variants[key] = (codes, floats, codes.tolist())
         return out
 
     def empty(self) -> bool:
         return len(self.ops) == 0
 
 
-__all__ = ["CommandStream", "Chunk", "ATTRS", "BGN", "END", "SWAP"]
+__all__ = ["CommandStream", "Chunk", "ATTRS", "BGN", "END", "SWAP", "SPLICE_MIN_FLOATS"]
