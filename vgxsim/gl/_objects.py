@@ -86,6 +86,12 @@ class DisplayObject:
 
     def __init__(self, segments: list | None = None):
         self.segments: list = segments if segments is not None else []
+        # The chunks, when the object holds nothing else (tags aside): callobj splices
+        # them without walking its stack.  Segments never change after construction
+        # (editobj edits a copy, closeobj builds a new object).
+        self.chunks: list | None = None
+        if all(isinstance(seg, (Chunk, Tag)) for seg in self.segments):
+            self.chunks = [seg for seg in self.segments if isinstance(seg, Chunk)]
 
     @property
     def program(self) -> list:
@@ -492,6 +498,10 @@ def callobj(*args) -> None:
     dobj = session.objects.get(obj)
     if dobj is None:
         return
+    if dobj.chunks is not None:  # only vertex-stream calls: nothing nests
+        for ch in dobj.chunks:
+            splice(ctx, ch)
+        return
     chain = [obj]
     stack = [(dobj.segments, 0)]
     while stack:
@@ -620,7 +630,8 @@ def _check_needs(ctx, ch: Chunk) -> None:
 def splice(ctx, ch: Chunk) -> None:
     """Append a chunk to the window's stream and leave the caller's current
     attributes as the chunk's calls would have."""
-    _check_needs(ctx, ch)
+    if ch.needs is not None:
+        _check_needs(ctx, ch)
     colour_op = C_OP
     if ch.last_colour is not None:
         if not ctx.config.rgb:
@@ -632,8 +643,11 @@ def splice(ctx, ch: Chunk) -> None:
     st = ctx.stream
     if ch.touched_prim and ctx.prim is None:
         _restate(ctx, st)
-    sync(ctx, st)
-    base_ops, base_fl = len(st), st.n_floats()
+    if (ctx.colour is not st.colour or ctx.normal is not st.normal
+            or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)  # the chunk's vertices start from the caller's attributes
+    if ch.open is not None:
+        base_ops, base_fl = len(st), st.n_floats()
     st.splice(ch, colour_op)
     if ch.touched_prim:
         ctx.prim = ch.open
@@ -654,7 +668,12 @@ def splice(ctx, ch: Chunk) -> None:
         st.has_texcoords = True
     if ch.gpos is not None:
         ctx.gpos = ch.gpos
-    st.colour = None  # the decoder's attributes are the chunk's now: sync anew
+    # The decoder leaves the chunk with the attributes set above (a C op clears the
+    # normal-sent flag, an N op sets it, a CM op sets lmcolor_set; the ctx fields
+    # were updated alike), so the stream has them: the next vertex or splice need not
+    # sync again (tests/stream: objects draw what immediate mode draws).
+    st.colour, st.normal, st.sent, st.lmcolor_set = (ctx.colour, ctx.normal, ctx.last_sent,
+                                                     ctx.lmcolor_set)
     if ch.has_lines:
         from vgxsim.pipeline.decode import drain
 
