@@ -14,10 +14,13 @@ import numpy as np
 from vgxsim.kernels.options import jit
 from vgxsim.stream.opcodes import (
     BGN,
+    CLEAR,
+    CLEAR_KIND,
     CM,
     CRAW,
     CSKIP,
     END,
+    P_CLEAR,
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
@@ -62,7 +65,8 @@ def decode_stream(ops, nops, fl, attrs):
     sent : ndarray, shape (V,), bool
         Whether the normal was sent after the last colour (lmcolor(3G)).
     prims : ndarray, shape (P, 7), int64
-        Kind, first vertex, end vertex, state record, lmcolor_set, swap range.
+        Kind, first vertex, end vertex, state record, lmcolor_set, swap range (a
+        CLEAR row: CLEAR_KIND, no vertices, its clear index in P_CLEAR).
     swaps : ndarray, shape (S,), int64
         swaptmesh positions (vertex counts from the primitive's first vertex).
     """
@@ -74,7 +78,7 @@ def decode_stream(ops, nops, fl, attrs):
         op = ops[i]
         if op == V:
             nv += 1
-        elif op == END:
+        elif op == END or op == CLEAR:
             npr += 1
         elif op == SWAP:
             nsw += 1
@@ -152,6 +156,17 @@ def decode_stream(ops, nops, fl, attrs):
             isw += 1
         elif op == STATE:
             state = ops[i + 1]
+        elif op == CLEAR:
+            # In drawing order among the primitives (a clear inside an open
+            # primitive comes before it, which is drawn at its END).
+            prims[ip, P_KIND] = CLEAR_KIND
+            prims[ip, P_V0] = iv
+            prims[ip, P_V1] = iv
+            prims[ip, P_STATE] = state
+            prims[ip, P_LMCOLOR_SET] = 0
+            prims[ip, P_CLEAR] = ops[i + 1]
+            prims[ip, P_SWAP1] = 0
+            ip += 1
         elif op == T:
             f += 2  # texture coordinate: kernels/texture.py decode_texcoords reads it
         i += 1 + _int_payload(op)
@@ -168,7 +183,7 @@ def decode_stream(ops, nops, fl, attrs):
 def _int_payload(op):
     if op == SYNC:
         return 2
-    if op == BGN or op == STATE:
+    if op == BGN or op == STATE or op == CLEAR:
         return 1
     return 0
 

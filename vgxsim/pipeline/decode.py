@@ -15,9 +15,11 @@ from vgxsim.geometry.transform import apply
 from vgxsim.kernels.decode import assemble_triangles, decode_stream
 from vgxsim.kernels.texture import decode_texcoords
 from vgxsim.stream.opcodes import (
+    CLEAR_KIND,
     CLOSEDLINE,
     LINE,
     NAME_OF,
+    P_CLEAR,
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
@@ -29,7 +31,7 @@ from vgxsim.stream.opcodes import (
 )
 
 from . import draw
-from .draw import defer_triangles, draw_arrays
+from .draw import commit_triangles, defer_triangles, draw_arrays
 
 _TRIANGLES = np.zeros(16, bool)
 _TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
@@ -51,9 +53,10 @@ def drain(ctx) -> None:
     if cut_ops < nops:
         s.open_ops, s.open_fl = 0, 0
     records = ctx.states.records
-    _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc)
+    _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc, s.clears)
     if ctx.prim is None:
         ctx.states.clear()
+        s.clears = []
         s.attrs[9] = -1.0
         s.raster = None  # the next bgn* records its state again
 
@@ -67,10 +70,20 @@ def _lit(state, sent: np.ndarray) -> np.ndarray:
     return sent
 
 
-def _select_prims(ctx, records, pos, prims, swaps) -> None:
+def _clear(ctx, planes: int, colour: int, z: int, stencil: int, rs) -> None:
+    """A CLEAR op: the triangles queued before it are drawn first."""
+    commit_triangles(ctx)
+    ctx.raw_batch.add_clear(planes, colour, z, stencil, rs)
+
+
+def _select_prims(ctx, records, pos, prims, swaps, clears) -> None:
     """Pick/select mode: hand each primitive to the hit test in clip space (its own
-    state's transform, which holds the pick matrix), drawing nothing (pick(3G))."""
+    state's transform, which holds the pick matrix), drawing nothing (pick(3G)); a
+    clear recorded before the mode began is still done."""
     for kind, v0, v1, si, _lms, s0, s1 in prims[:, :7].tolist():
+        if kind == CLEAR_KIND:
+            _clear(ctx, *clears[s0])
+            continue
         if v1 == v0:
             continue
         name = "polygon" if kind in (POLYGON, PMV) else NAME_OF[kind]
@@ -78,17 +91,18 @@ def _select_prims(ctx, records, pos, prims, swaps) -> None:
                         None)
 
 
-def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None) -> None:
+def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears=()) -> None:
     npr = prims.shape[0]
     if npr == 0:
         return
     if ctx.select_hook is not None:
-        _select_prims(ctx, records, pos, prims, swaps)
+        _select_prims(ctx, records, pos, prims, swaps, clears)
         return
     kinds = prims[:, P_KIND]
     tri = _TRIANGLES[kinds]
     if draw.MERGE_FRAGMENT_STATES:
-        geometry = np.asarray(ctx.states.geometry, np.int64)[prims[:, P_STATE]]
+        # (-1 for a CLEAR before any state record: the appended entry.)
+        geometry = np.asarray(ctx.states.geometry + [-1], np.int64)[prims[:, P_STATE]]
     else:
         geometry = prims[:, P_STATE]
     key = geometry * 2 + prims[:, P_LMCOLOR_SET]
@@ -105,6 +119,9 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None) -> Non
     lit_groups: list = []
     for a, b in zip(starts, ends, strict=True):
         kind, v0, v1, si, lms = rows[a][0], rows[a][1], rows[b - 1][2], rows[a][3], rows[a][4]
+        if kind == CLEAR_KIND:
+            jobs.append((_clear, (ctx, *clears[rows[a][P_CLEAR]]), {}))
+            continue
         if v1 == v0:
             continue  # bgn*/end* without vertices draws nothing
         state = records[si]

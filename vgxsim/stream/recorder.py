@@ -50,6 +50,8 @@ class CommandStream:
     open_ops, open_fl : int
         Where the open primitive's BGN starts (a flush while a primitive is open
         decodes only what precedes it), counted from the start of ``parts``.
+    clears : list of (planes, colour, z, stencil, RasterState)
+        The clears the stream's CLEAR ops name (emptied with the state table).
     parts : list of (ops, fl)
         What precedes ``ops`` and ``fl`` in the stream: lists recorded before a
         splice and the int64 / float64 arrays of the chunks spliced
@@ -62,6 +64,8 @@ class CommandStream:
         self.parts: list = []
         self.parts_ops = 0
         self.parts_fl = 0
+        # CLEAR ops' arguments, by index: (planes, colour, z, stencil, clear state).
+        self.clears: list = []
         self.attrs = np.zeros(ATTRS)
         self.attrs[9] = -1.0
         self.attrs[10] = -1.0
