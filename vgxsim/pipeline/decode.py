@@ -147,9 +147,10 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears
             continue
         tris, prov, tri_prim = _group_triangles(prims[a:b], v0, swaps)
         tri_states = None
-        recs = [records[r[3]] for r in rows[a:b]]
-        if any(r.raster is not state.raster for r in recs):
-            tri_states = (recs, tri_prim)  # one entry per primitive of the group
+        if not (prims[a:b, P_STATE] == si).all():  # one record: one raster (most groups)
+            recs = [records[r[3]] for r in rows[a:b]]
+            if any(r.raster is not state.raster for r in recs):
+                tri_states = (recs, tri_prim)  # one entry per primitive of the group
         normals = nrm[sl] if state.lighting is not None else None
         cols = col[sl] if _wants_colour(state) else None
         lit = lit if normals is not None else None
