@@ -165,7 +165,7 @@ def begin(ctx, name: str, args: tuple, prim: str) -> None:
         raise GLUsageError(f"{describe(name, args)}: {OPENER[ctx.prim]}() is still open "
                            f"(call {CLOSER[ctx.prim]}() first)")
     st = ctx.stream
-    if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
+    if len(st.ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
         drain(ctx)
     _restate(ctx, st)
     ctx.prim = prim
@@ -282,7 +282,7 @@ def _bgn(prim: str):
             begin(current(name, args), name, args, prim)  # raises
         st = ctx.stream
         ops = st.ops
-        if st.parts_ops + len(ops) > MAX_STREAM_OPS:
+        if len(ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
             drain(ctx)
             ops = st.ops
         _restate(ctx, st)

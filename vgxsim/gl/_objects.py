@@ -50,9 +50,10 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim import GL
+from vgxsim.pipeline.decode import drain
 from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, T, V
 from vgxsim.stream.opcodes import C as C_OP
-from vgxsim.stream.recorder import Chunk
+from vgxsim.stream.recorder import MAX_STREAM_OPS, Chunk
 
 from ._core import (
     GLTypeError,
@@ -641,6 +642,8 @@ def splice(ctx, ch: Chunk) -> None:
                                "color()")
         colour_op = _colour_op(ctx)
     st = ctx.stream
+    if len(st) > MAX_STREAM_OPS and ctx.prim is None:
+        drain(ctx)  # a full stream (callobj in a loop that never reads back)
     if ch.touched_prim and ctx.prim is None:
         _restate(ctx, st)
     if (ctx.colour is not st.colour or ctx.normal is not st.normal
@@ -675,8 +678,6 @@ def splice(ctx, ch: Chunk) -> None:
     st.colour, st.normal, st.sent, st.lmcolor_set = (ctx.colour, ctx.normal, ctx.last_sent,
                                                      ctx.lmcolor_set)
     if ch.has_lines:
-        from vgxsim.pipeline.decode import drain
-
         drain(ctx)
 
 
