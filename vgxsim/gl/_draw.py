@@ -294,8 +294,7 @@ def _bgn(prim: str):
 
     call.__name__ = call.__qualname__ = name
     call.__doc__ = f"{name}(): open a {prim} primitive ({name}(3G))."
-    call.__wrapped__ = call
-    call.gl_record = True
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
     call.stream = parse
     return call
 
@@ -321,8 +320,7 @@ def _end(prim: str):
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(): close the {prim} and draw it; GLUsageError without "
                     f"{OPENER[prim]}().")
-    call.__wrapped__ = call
-    call.gl_record = True
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
     call.stream = parse
     return call
 
@@ -457,8 +455,7 @@ def _vertex_call(n: int, suffix: str):
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): a vertex from {n} {kind}, as {name}(x, ...) or "
                     f"{name}((x, ...)); only between bgn* and end* (v(3G)).")
-    call.__wrapped__ = call
-    call.gl_record = True
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
     call.stream = parse
     return call
 
@@ -493,8 +490,7 @@ def _normal_call(name: str, doc: str):
 
     call.__name__ = call.__qualname__ = name
     call.__doc__ = doc
-    call.__wrapped__ = call
-    call.gl_record = True
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
     call.stream = parse
     return call
 
