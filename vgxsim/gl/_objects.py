@@ -47,6 +47,8 @@ tag always falls between routines.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from vgxsim import GL
@@ -65,6 +67,7 @@ from ._core import (
     current,
     describe,
     gl_function,
+    record_or_refuse,
     session,
 )
 from ._draw import CLOSER, OPENER, _restate, sync
@@ -489,13 +492,20 @@ def getopenobj(*args) -> int:
     return -1 if session.open_object is None else int(session.open_object)
 
 
-@gl_function(record=True)
-def callobj(*args) -> None:
+@gl_function(record=True, binds=(0, math.inf, ()))
+def callobj(*args, **kwargs) -> None:
     """callobj(obj): draw an instance of ``obj``; undefined objects are ignored.
 
     Nested objects run on an explicit stack, at most MAX_NESTING deep."""
-    obj = _object_arg("callobj", args)
-    ctx = current("callobj", args)
+    if kwargs or session.recording is not None:
+        return record_or_refuse(callobj, args, kwargs)
+    ctx = session.windows.get(session.current)
+    if (len(args) == 1 and type(args[0]) is int and 0 <= args[0] <= MAX_OBJECT
+            and ctx is not None):
+        obj = args[0]  # the checks of _object_arg and current, inlined
+    else:
+        obj = _object_arg("callobj", args)
+        ctx = current("callobj", args)
     dobj = session.objects.get(obj)
     if dobj is None:
         return
