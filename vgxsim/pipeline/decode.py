@@ -3,8 +3,12 @@
 The decode kernel (:func:`vgxsim.kernels.decode.decode_stream`) resolves every
 vertex's colour, normal and lit flag in one pass and cuts the primitives; here the
 primitives are grouped -- consecutive triangle primitives of one draw state become
-one triangle list, fanned at once -- and handed to the geometry passes
-(:mod:`.draw`).
+one triangle list, assembled in one kernel pass
+(:func:`vgxsim.kernels.decode.assemble_triangles`) -- and handed to the geometry
+passes (:mod:`.draw`); the lit groups of the whole flush are lit together
+(:func:`.draw.shade_groups`).  Clears are rows of the same table (CLEAR ops), done
+in order between the primitives, so the clears of a frame cost no decode of their
+own.
 """
 
 from __future__ import annotations
