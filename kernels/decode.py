@@ -204,7 +204,7 @@ def assemble_triangles(block, base, swaps):
     base : int
         Vertex index the returned indices count from.
     swaps : ndarray, shape (S,), int64
-        The stream's swaptmesh positions (rows name their range).
+        The stream's swaptmesh positions (rows name their range, nondecreasing).
 
     Returns
     -------
@@ -232,8 +232,10 @@ def assemble_triangles(block, base, swaps):
         off = block[r, P_V0] - base
         count = block[r, P_V1] - block[r, P_V0]
         if kind == TMESH:
+            # The decoder writes a primitive's swaps in stream order, which is
+            # vertex order: already sorted, as assembly.tmesh_triangles sorts them.
             t = _tmesh(tris, prov, recs, t, r, off, count,
-                       np.sort(swaps[block[r, P_SWAP0]:block[r, P_SWAP1]]))
+                       swaps[block[r, P_SWAP0]:block[r, P_SWAP1]])
         elif kind == QSTRIP:
             for q in range(0, count - 3, 2):
                 tris[t, 0], tris[t, 1], tris[t, 2] = off + q, off + q + 1, off + q + 3
