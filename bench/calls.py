@@ -6,9 +6,12 @@ Reports, medians over rounds, all measured in this one run:
 
 * ns per call of the common immediate-mode calls (v3f, n3f, c3f, cpack,
   bgnpolygon/endpolygon, stencil, lmbind, zwritemask, wmpack,
-  pushmatrix/translate/popmatrix, callobj of a small object), and the same call mix
-  through PyOpenGL immediate mode on an OSMesa context when one can be made
-  (``--no-mesa`` or no libOSMesa: those rows are left out);
+  pushmatrix/translate/popmatrix, callobj of a small object), and the nearest
+  PyOpenGL immediate-mode call for each on an OSMesa context when one can be made
+  (glVertex3f/glVertex3fv, glNormal3fv, glColor3f, glColor4ub, glBegin/glEnd,
+  glStencilOp, glMaterialfv, glDepthMask, glColorMask, glPush/Translate/PopMatrix,
+  glCallList of a one-quad list; ``ratio`` is PyOpenGL / vgxsim, the issue's target
+  is >= 5; ``--no-mesa`` or no libOSMesa: those rows are left out);
 * the Heidmann 1991 frame of vgxsim/examples/heidmann1991.py at 1280 x 1024 through
   the API: the whole frame, the raster part (time inside ``CommandBatch.flush``:
   binning and the band kernels) and the front end (the rest: the calls, recording,
@@ -346,13 +349,61 @@ def mesa_calls(rounds: int) -> dict[str, float] | None:
             G.glTranslatef(1.0, 2.0, 3.0)
             G.glPopMatrix()
 
-    out["v3f(x, y, z)"] = _median_ns(loop_vertex, n, rounds)
+    def loop_vertex_seq():
+        G.glBegin(G.GL_POLYGON)
+        for _ in range(n):
+            G.glVertex3f(1.0, 2.0, 0.0)
+        G.glEnd()
+
+    def loop_cpack():
+        # cpack(0xFF00FF00): the packed ABGR colour as four unsigned bytes.
+        for _ in range(n):
+            G.glColor4ub(0x00, 0xFF, 0x00, 0xFF)
+
+    mats = ((0.8, 0.6, 0.4, 1.0), (0.2, 0.3, 0.4, 1.0))
+
+    def loop_material():
+        # lmbind(MATERIAL, i): the nearest OpenGL call re-specifies the material.
+        for i in range(n):
+            G.glMaterialfv(G.GL_FRONT, G.GL_DIFFUSE, mats[i & 1])
+
+    def loop_depthmask():
+        for i in range(n):
+            G.glDepthMask(G.GL_TRUE if i & 1 else G.GL_FALSE)
+
+    def loop_colormask():
+        for i in range(n):
+            on = G.GL_TRUE if i & 1 else G.GL_FALSE
+            G.glColorMask(on, on, on, on)
+
+    quad = ((1.0, 1.0, 0.0), (30.0, 1.0, 0.0), (30.0, 30.0, 0.0), (1.0, 30.0, 0.0))
+    lst = G.glGenLists(1)
+    G.glNewList(lst, G.GL_COMPILE)
+    G.glColor4ub(0xFF, 0x00, 0x00, 0xFF)
+    G.glBegin(G.GL_POLYGON)
+    for q in quad:
+        G.glVertex3fv(q)
+    G.glEnd()
+    G.glEndList()
+
+    def loop_calllist():
+        for _ in range(n // 4):
+            G.glCallList(lst)
+
+    out["v3f(x, y, z)"] = _median_ns(loop_vertex_seq, n, rounds)
+    out["v3f((x, y, z))"] = _median_ns(loop_vertex, n, rounds)
     out["n3f"] = _median_ns(loop_normal, n, rounds)
     out["c3f"] = _median_ns(loop_colour, n, rounds)
+    out["cpack"] = _median_ns(loop_cpack, n, rounds)
     out["bgnpolygon+endpolygon (empty)"] = _median_ns(loop_bgnend, n, rounds) / 2
     out["stencil"] = _median_ns(loop_stencil, n, rounds)
+    out["lmbind(MATERIAL)"] = _median_ns(loop_material, n, rounds)
+    out["zwritemask"] = _median_ns(loop_depthmask, n, rounds)
+    out["wmpack"] = _median_ns(loop_colormask, n, rounds)
     out["pushmatrix+translate+popmatrix (per call)"] = _median_ns(loop_matrix, n, rounds) / 3
+    out["callobj (1 quad)"] = _median_ns(loop_calllist, n // 4, rounds)
     G.glFinish()
+    G.glDeleteLists(lst, 1)
     return out
 
 
@@ -391,9 +442,10 @@ def main(argv=None) -> int:
         CLOCK["ns"] = time.process_time_ns
     calls = vgxsim_calls(rounds)
     mesa = None if args.no_mesa else mesa_calls(rounds)
-    print(f"{'call':50s} {'vgxsim ns':>10s} {'PyOpenGL ns':>12s}")
+    print(f"{'call':50s} {'vgxsim ns':>10s} {'PyOpenGL ns':>12s} {'ratio':>6s}")
     for name, ns in calls.items():
-        m = "" if mesa is None or name not in mesa else f"{mesa[name]:12.0f}"
+        m = "" if mesa is None or name not in mesa else (
+            f"{mesa[name]:12.0f} {mesa[name] / ns:6.1f}")
         print(f"{name:50s} {ns:10.0f} {m}")
     if args.calls_only:
         if args.json:

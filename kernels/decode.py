@@ -14,10 +14,13 @@ import numpy as np
 from vgxsim.kernels.options import jit
 from vgxsim.stream.opcodes import (
     BGN,
+    CLEAR,
+    CLEAR_KIND,
     CM,
     CRAW,
     CSKIP,
     END,
+    P_CLEAR,
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
@@ -26,9 +29,11 @@ from vgxsim.stream.opcodes import (
     P_V0,
     P_V1,
     PRIM_COLUMNS,
+    QSTRIP,
     STATE,
     SWAP,
     SYNC,
+    TMESH,
     C,
     N,
     T,
@@ -60,7 +65,8 @@ def decode_stream(ops, nops, fl, attrs):
     sent : ndarray, shape (V,), bool
         Whether the normal was sent after the last colour (lmcolor(3G)).
     prims : ndarray, shape (P, 7), int64
-        Kind, first vertex, end vertex, state record, lmcolor_set, swap range.
+        Kind, first vertex, end vertex, state record, lmcolor_set, swap range (a
+        CLEAR row: CLEAR_KIND, no vertices, its clear index in P_CLEAR).
     swaps : ndarray, shape (S,), int64
         swaptmesh positions (vertex counts from the primitive's first vertex).
     """
@@ -72,7 +78,7 @@ def decode_stream(ops, nops, fl, attrs):
         op = ops[i]
         if op == V:
             nv += 1
-        elif op == END:
+        elif op == END or op == CLEAR:
             npr += 1
         elif op == SWAP:
             nsw += 1
@@ -150,6 +156,17 @@ def decode_stream(ops, nops, fl, attrs):
             isw += 1
         elif op == STATE:
             state = ops[i + 1]
+        elif op == CLEAR:
+            # In drawing order among the primitives (a clear inside an open
+            # primitive comes before it, which is drawn at its END).
+            prims[ip, P_KIND] = CLEAR_KIND
+            prims[ip, P_V0] = iv
+            prims[ip, P_V1] = iv
+            prims[ip, P_STATE] = state
+            prims[ip, P_LMCOLOR_SET] = 0
+            prims[ip, P_CLEAR] = ops[i + 1]
+            prims[ip, P_SWAP1] = 0
+            ip += 1
         elif op == T:
             f += 2  # texture coordinate: kernels/texture.py decode_texcoords reads it
         i += 1 + _int_payload(op)
@@ -166,6 +183,102 @@ def decode_stream(ops, nops, fl, attrs):
 def _int_payload(op):
     if op == SYNC:
         return 2
-    if op == BGN or op == STATE:
+    if op == BGN or op == STATE or op == CLEAR:
         return 1
     return 0
+
+
+@jit
+def assemble_triangles(block, base, swaps):
+    """Triangles of consecutive triangle primitives (rows of the decoded primitive
+    table), as vgxsim.geometry.assembly assembles each kind: a polygon (or pmv) is
+    fanned from its first vertex, (0, i, i + 1), its last vertex provoking
+    (shademodel(3G)); a tmesh keeps two saved vertices, each new one replacing the
+    older, swaptmesh exchanging them (and the winding parity, so a fan faces one way),
+    its newest vertex provoking; a qstrip makes (q, q + 1, q + 3) and (q, q + 3, q + 2)
+    per quad, q + 3 provoking.
+
+    Parameters
+    ----------
+    block : ndarray, shape (P, PRIM_COLUMNS), int64
+    base : int
+        Vertex index the returned indices count from.
+    swaps : ndarray, shape (S,), int64
+        The stream's swaptmesh positions (rows name their range, nondecreasing).
+
+    Returns
+    -------
+    tris : ndarray, shape (T, 3), int64
+    prov : ndarray, shape (T,), int64
+        The flat-shading vertex of each triangle.
+    recs : ndarray, shape (T,), int64
+        The row of ``block`` each triangle comes from.
+    """
+    n = 0
+    for r in range(block.shape[0]):
+        count = block[r, P_V1] - block[r, P_V0]
+        kind = block[r, P_KIND]
+        if kind == QSTRIP:
+            if count >= 4:
+                n += 2 * ((count - 4) // 2 + 1)
+        elif count >= 3:
+            n += count - 2
+    tris = np.empty((n, 3), np.int64)
+    prov = np.empty(n, np.int64)
+    recs = np.empty(n, np.int64)
+    t = 0
+    for r in range(block.shape[0]):
+        kind = block[r, P_KIND]
+        off = block[r, P_V0] - base
+        count = block[r, P_V1] - block[r, P_V0]
+        if kind == TMESH:
+            # The decoder writes a primitive's swaps in stream order, which is
+            # vertex order: already sorted, as assembly.tmesh_triangles sorts them.
+            t = _tmesh(tris, prov, recs, t, r, off, count,
+                       swaps[block[r, P_SWAP0]:block[r, P_SWAP1]])
+        elif kind == QSTRIP:
+            for q in range(0, count - 3, 2):
+                tris[t, 0], tris[t, 1], tris[t, 2] = off + q, off + q + 1, off + q + 3
+                tris[t + 1, 0], tris[t + 1, 1], tris[t + 1, 2] = off + q, off + q + 3, off + q + 2
+                prov[t] = prov[t + 1] = off + q + 3
+                recs[t] = recs[t + 1] = r
+                t += 2
+        else:
+            for i in range(1, count - 1):
+                tris[t, 0], tris[t, 1], tris[t, 2] = off, off + i, off + i + 1
+                prov[t] = off + count - 1
+                recs[t] = r
+                t += 1
+    return tris, prov, recs
+
+
+@jit
+def _tmesh(tris, prov, recs, t, r, off, count, swap_at):
+    """One tmesh's triangles into rows ``t ..``; returns the next free row."""
+    s0, s1 = -1, -1  # s0 is replaced next
+    replace_slot = 0
+    si = 0
+    for v in range(count):
+        while si < swap_at.shape[0] and swap_at[si] == v:
+            s0, s1 = s1, s0
+            if s0 >= 0 and s1 >= 0:
+                replace_slot ^= 1
+            si += 1
+        if s0 >= 0 and s1 >= 0:
+            if replace_slot == 0:
+                tris[t, 0], tris[t, 1] = off + s0, off + s1
+            else:
+                tris[t, 0], tris[t, 1] = off + s1, off + s0
+            tris[t, 2] = off + v
+            prov[t] = off + v
+            recs[t] = r
+            t += 1
+        if s0 < 0:
+            s0 = v
+        elif s1 < 0:
+            s1 = v
+        else:
+            s0 = s1
+            s1 = v
+            replace_slot ^= 1
+    return t

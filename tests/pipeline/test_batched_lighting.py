@@ -61,8 +61,8 @@ def _heidmann(monkeypatch, batched: bool):
 
     monkeypatch.setattr(draw, "BATCH_LIGHTING", batched)
     calls = [0]
-    real = draw.shade_runs
-    monkeypatch.setattr(draw, "shade_runs",
+    real = draw.shade_object_runs
+    monkeypatch.setattr(draw, "shade_object_runs",
                         lambda *a: (calls.__setitem__(0, calls[0] + 1), real(*a))[1])
     session.reset()
     planes = {}

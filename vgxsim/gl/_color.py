@@ -36,6 +36,7 @@ from ._core import (
     describe,
     flat_numbers,
     gl_function,
+    record_or_refuse,
     session,
 )
 
@@ -147,7 +148,9 @@ def _colour_call(name: str, rgba_of, doc: str):
     """An RGB colour call from the function giving its RGBA (also what display objects
     record)."""
 
-    def body(*args) -> None:
+    def body(*args, **kwargs) -> None:
+        if kwargs or session.recording is not None:
+            return record_or_refuse(body, args, kwargs)
         ctx = session.windows.get(session.current)
         if ctx is None:
             ctx = current(name, args)
@@ -157,7 +160,7 @@ def _colour_call(name: str, rgba_of, doc: str):
 
     body.__name__ = body.__qualname__ = name
     body.__doc__ = doc
-    call = gl_function()(body)
+    call = gl_function(binds=(0, math.inf, ()))(body)
     call.stream_rgba = rgba_of
     return call
 
@@ -177,13 +180,16 @@ c4s = _colour_call("c4s", _int_rgba("c4s", 4),
                    "As :func:`c4i` (the C form takes shorts).")
 
 
-@gl_function()
-def cpack(abgr: int) -> None:
-    """Set the current colour from one packed word 0xAABBGGRR (cpack(3G)).
+@gl_function(binds=(1, 1, ("int",)))
+def cpack(*args, **kwargs) -> None:
+    """cpack(abgr): set the current colour from one packed word 0xAABBGGRR (cpack(3G)).
 
     Red is the low byte; alpha comes from the high byte, so ``cpack(0xFF)`` is red
     with alpha 0.
     """
+    if kwargs or session.recording is not None or len(args) != 1:
+        return record_or_refuse(cpack, args, kwargs)
+    abgr = args[0]
     ctx = session.windows.get(session.current)
     if ctx is not None and type(abgr) is int and ctx.config.rgb:
         # Fast path (a plain int in RGB mode): _cpack_rgba inlined.
@@ -191,7 +197,6 @@ def cpack(abgr: int) -> None:
         _set_rgba(ctx, (_BYTE[w & 0xFF], _BYTE[(w >> 8) & 0xFF], _BYTE[(w >> 16) & 0xFF],
                         _BYTE[w >> 24]))
         return
-    args = (abgr,)
     ctx = current("cpack", args)
     if not ctx.config.rgb:
         _need_rgb(ctx, "cpack", args)

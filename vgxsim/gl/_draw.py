@@ -165,12 +165,12 @@ def begin(ctx, name: str, args: tuple, prim: str) -> None:
         raise GLUsageError(f"{describe(name, args)}: {OPENER[ctx.prim]}() is still open "
                            f"(call {CLOSER[ctx.prim]}() first)")
     st = ctx.stream
-    if len(st.ops) > MAX_STREAM_OPS:
+    if len(st.ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
         drain(ctx)
     _restate(ctx, st)
     ctx.prim = prim
-    st.open_ops = len(st.ops)
-    st.open_fl = len(st.fl)
+    st.open_ops = st.parts_ops + len(st.ops)
+    st.open_fl = st.parts_fl + len(st.fl)
     st.ops.append(BGN)
     st.ops.append(KIND_OF[prim])
 
@@ -281,20 +281,20 @@ def _bgn(prim: str):
         if ctx is None or ctx.prim is not None:
             begin(current(name, args), name, args, prim)  # raises
         st = ctx.stream
-        if len(st.ops) > MAX_STREAM_OPS:
+        ops = st.ops
+        if len(ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
             drain(ctx)
+            ops = st.ops
         _restate(ctx, st)
         ctx.prim = prim
-        ops = st.ops
-        st.open_ops = len(ops)
-        st.open_fl = len(st.fl)
+        st.open_ops = st.parts_ops + len(ops)
+        st.open_fl = st.parts_fl + len(st.fl)
         ops.append(BGN)
         ops.append(code)
 
     call.__name__ = call.__qualname__ = name
     call.__doc__ = f"{name}(): open a {prim} primitive ({name}(3G))."
-    call.__wrapped__ = call
-    call.gl_record = True
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
     call.stream = parse
     return call
 
@@ -320,8 +320,7 @@ def _end(prim: str):
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(): close the {prim} and draw it; GLUsageError without "
                     f"{OPENER[prim]}().")
-    call.__wrapped__ = call
-    call.gl_record = True
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
     call.stream = parse
     return call
 
@@ -456,8 +455,7 @@ def _vertex_call(n: int, suffix: str):
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): a vertex from {n} {kind}, as {name}(x, ...) or "
                     f"{name}((x, ...)); only between bgn* and end* (v(3G)).")
-    call.__wrapped__ = call
-    call.gl_record = True
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
     call.stream = parse
     return call
 
@@ -492,8 +490,7 @@ def _normal_call(name: str, doc: str):
 
     call.__name__ = call.__qualname__ = name
     call.__doc__ = doc
-    call.__wrapped__ = call
-    call.gl_record = True
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
     call.stream = parse
     return call
 

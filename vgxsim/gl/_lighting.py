@@ -31,6 +31,7 @@ from ._core import (
     current,
     describe,
     gl_function,
+    record_or_refuse,
     session,
 )
 
@@ -109,16 +110,20 @@ def lmdef(deftype: int, index: int, *rest) -> None:
         ctx.lmcolor_set = False  # the hardware material is reloaded
 
 
-@gl_function()
-def lmbind(target: int, index: int) -> None:
-    """Bind definition ``index`` to MATERIAL, BACKMATERIAL, LIGHT0..LIGHT7 or LMODEL
-    (lmbind(3G)); index 0 unbinds.  Binding an undefined index is an error.
+@gl_function(binds=(2, 2, ("int", "int")))
+def lmbind(*args, **kwargs) -> None:
+    """lmbind(target, index): bind definition ``index`` to MATERIAL, BACKMATERIAL,
+    LIGHT0..LIGHT7 or LMODEL (lmbind(3G)); index 0 unbinds.  Binding an undefined
+    index is an error.
 
     A light is transformed to eye space here, by the current modelview.
     With a lighting model whose TWOSIDE is set, back-facing polygons are lit from
     the back (flipped normal) with the BACKMATERIAL when one is bound, else with the
     front material (lmdef(3G)).
     """
+    if kwargs or session.recording is not None or len(args) != 2:
+        return record_or_refuse(lmbind, args, kwargs)
+    target, index = args
     ctx = session.windows.get(session.current)
     # Fast path: a material or lighting-model token (int or GL token) and a plain int
     # index in range, the checks below inlined; lights (which transform by the
@@ -132,7 +137,6 @@ def lmbind(target: int, index: int) -> None:
             if key == "material":
                 ctx.lmcolor_set = False
             return
-    args = (target, index)
     ctx = current("lmbind", args)
     ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
     t = as_int("lmbind", args, "target", target)

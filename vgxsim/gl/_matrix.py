@@ -14,6 +14,8 @@ flat numbers) and raises a :class:`GLError` naming the call.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from vgxsim import GL
@@ -33,6 +35,7 @@ from ._core import (
     describe,
     flat_numbers,
     gl_function,
+    record_or_refuse,
     session,
     topic_state,
     window_of,
@@ -238,9 +241,11 @@ def rot(*args) -> None:
     current(name, args).matrices.mult(T.rotation(a, axis))
 
 
-@gl_function(record=True)
-def translate(*args) -> None:
+@gl_function(record=True, binds=(0, math.inf, ()))
+def translate(*args, **kwargs) -> None:
     """translate(x, y, z): premultiply a translation."""
+    if kwargs or session.recording is not None:
+        return record_or_refuse(translate, args, kwargs)
     if len(args) == 3:
         x, y, z = args
         # Fast path: three finite floats (x - x is 0.0 only for finite x).
@@ -265,8 +270,8 @@ def scale(*args) -> None:
     current(name, args).matrices.mult(T.scaling(*v))
 
 
-@gl_function(record=True)
-def pushmatrix(*args) -> None:
+@gl_function(record=True, binds=(0, math.inf, ()))
+def pushmatrix(*args, **kwargs) -> None:
     """pushmatrix(): duplicate the top of the matrix stack (MATRIXSTACKDEPTH 32).
 
     Only the single matrix (MSINGLE) and the ModelView matrix (MVIEWING) are stacked.
@@ -277,6 +282,8 @@ def pushmatrix(*args) -> None:
     after its popmatrix; save the projection with getmatrix and restore it with
     loadmatrix instead.
     """
+    if kwargs or session.recording is not None:
+        return record_or_refuse(pushmatrix, args, kwargs)
     if args:
         _nargs("pushmatrix", args, 0)
     ctx = session.windows.get(session.current)
@@ -291,10 +298,12 @@ def pushmatrix(*args) -> None:
                            f"(MATRIXSTACKDEPTH is {STACK_DEPTH})") from None
 
 
-@gl_function(record=True)
-def popmatrix(*args) -> None:
+@gl_function(record=True, binds=(0, math.inf, ()))
+def popmatrix(*args, **kwargs) -> None:
     """popmatrix(): discard the top of the matrix stack; GLUsageError in MPROJECTION
     and MTEXTURE, whose matrices are not stacked (see :func:`pushmatrix`)."""
+    if kwargs or session.recording is not None:
+        return record_or_refuse(popmatrix, args, kwargs)
     if args:
         _nargs("popmatrix", args, 0)
     ctx = session.windows.get(session.current)

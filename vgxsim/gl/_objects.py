@@ -47,12 +47,15 @@ tag always falls between routines.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from vgxsim import GL
+from vgxsim.pipeline.decode import drain
 from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, T, V
 from vgxsim.stream.opcodes import C as C_OP
-from vgxsim.stream.recorder import Chunk
+from vgxsim.stream.recorder import MAX_STREAM_OPS, Chunk
 
 from ._core import (
     GLTypeError,
@@ -64,6 +67,7 @@ from ._core import (
     current,
     describe,
     gl_function,
+    record_or_refuse,
     session,
 )
 from ._draw import CLOSER, OPENER, _restate, sync
@@ -86,6 +90,12 @@ class DisplayObject:
 
     def __init__(self, segments: list | None = None):
         self.segments: list = segments if segments is not None else []
+        # The chunks, when the object holds nothing else (tags aside): callobj splices
+        # them without walking its stack.  Segments never change after construction
+        # (editobj edits a copy, closeobj builds a new object).
+        self.chunks: list | None = None
+        if all(isinstance(seg, (Chunk, Tag)) for seg in self.segments):
+            self.chunks = [seg for seg in self.segments if isinstance(seg, Chunk)]
 
     @property
     def program(self) -> list:
@@ -482,15 +492,26 @@ def getopenobj(*args) -> int:
     return -1 if session.open_object is None else int(session.open_object)
 
 
-@gl_function(record=True)
-def callobj(*args) -> None:
+@gl_function(record=True, binds=(0, math.inf, ()))
+def callobj(*args, **kwargs) -> None:
     """callobj(obj): draw an instance of ``obj``; undefined objects are ignored.
 
     Nested objects run on an explicit stack, at most MAX_NESTING deep."""
-    obj = _object_arg("callobj", args)
-    ctx = current("callobj", args)
+    if kwargs or session.recording is not None:
+        return record_or_refuse(callobj, args, kwargs)
+    ctx = session.windows.get(session.current)
+    if (len(args) == 1 and type(args[0]) is int and 0 <= args[0] <= MAX_OBJECT
+            and ctx is not None):
+        obj = args[0]  # the checks of _object_arg and current, inlined
+    else:
+        obj = _object_arg("callobj", args)
+        ctx = current("callobj", args)
     dobj = session.objects.get(obj)
     if dobj is None:
+        return
+    if dobj.chunks is not None:  # only vertex-stream calls: nothing nests
+        for ch in dobj.chunks:
+            splice(ctx, ch)
         return
     chain = [obj]
     stack = [(dobj.segments, 0)]
@@ -620,7 +641,8 @@ def _check_needs(ctx, ch: Chunk) -> None:
 def splice(ctx, ch: Chunk) -> None:
     """Append a chunk to the window's stream and leave the caller's current
     attributes as the chunk's calls would have."""
-    _check_needs(ctx, ch)
+    if ch.needs is not None:
+        _check_needs(ctx, ch)
     colour_op = C_OP
     if ch.last_colour is not None:
         if not ctx.config.rgb:
@@ -630,12 +652,16 @@ def splice(ctx, ch: Chunk) -> None:
                                "color()")
         colour_op = _colour_op(ctx)
     st = ctx.stream
+    if len(st) > MAX_STREAM_OPS and ctx.prim is None:
+        drain(ctx)  # a full stream (callobj in a loop that never reads back)
     if ch.touched_prim and ctx.prim is None:
         _restate(ctx, st)
-    sync(ctx, st)
-    base_ops, base_fl = len(st.ops), len(st.fl)
-    st.ops.extend(ch.ops_for(colour_op))
-    st.fl.extend(ch.fl)
+    if (ctx.colour is not st.colour or ctx.normal is not st.normal
+            or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)  # the chunk's vertices start from the caller's attributes
+    if ch.open is not None:
+        base_ops, base_fl = len(st), st.n_floats()
+    st.splice(ch, colour_op)
     if ch.touched_prim:
         ctx.prim = ch.open
         if ch.open is not None:
@@ -655,10 +681,13 @@ def splice(ctx, ch: Chunk) -> None:
         st.has_texcoords = True
     if ch.gpos is not None:
         ctx.gpos = ch.gpos
-    st.colour = None  # the decoder's attributes are the chunk's now: sync anew
+    # The decoder leaves the chunk with the attributes set above (a C op clears the
+    # normal-sent flag, an N op sets it, a CM op sets lmcolor_set; the ctx fields
+    # were updated alike), so the stream has them: the next vertex or splice need not
+    # sync again (tests/stream: objects draw what immediate mode draws).
+    st.colour, st.normal, st.sent, st.lmcolor_set = (ctx.colour, ctx.normal, ctx.last_sent,
+                                                     ctx.lmcolor_set)
     if ch.has_lines:
-        from vgxsim.pipeline.decode import drain
-
         drain(ctx)
 
 

@@ -30,6 +30,7 @@ from ._core import (
     current,
     describe,
     gl_function,
+    record_or_refuse,
     session,
 )
 
@@ -81,10 +82,16 @@ def zfunction(func: int) -> None:
     ctx.raster.set(zfunc=check_token("zfunction", args, "func", func, _CMP, "ZF_"))
 
 
-@gl_function()
-def zwritemask(mask: int) -> None:
-    """Which z bits are written (zwritemask(3G)); 0 keeps z while still testing it."""
-    ctx = current("zwritemask", (mask,))
+@gl_function(binds=(1, 1, ("int",)))
+def zwritemask(*args, **kwargs) -> None:
+    """zwritemask(mask): which z bits are written (zwritemask(3G)); 0 keeps z while
+    still testing it."""
+    if kwargs or session.recording is not None or len(args) != 1:
+        return record_or_refuse(zwritemask, args, kwargs)
+    mask = args[0]
+    ctx = session.windows.get(session.current)
+    if ctx is None:
+        ctx = current("zwritemask", args)
     regs = ctx.raster
     regs.zwritemask = (mask if type(mask) is int else _u32("zwritemask", (mask,), "mask", mask)
                        ) & _U32
@@ -158,10 +165,10 @@ def setdepth(near: int, far: int) -> None:
 
 
 # -- stencil ----------------------------------------------------------------------
-@gl_function()
-def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
-            zpass: int) -> None:
-    """Set the stencil test and operations (stencil(3G)).
+@gl_function(binds=(7, 7, ("int",) * 7))
+def stencil(*args, **kwargs) -> None:
+    """stencil(enable, ref, func, mask, fail, pass_, zpass): set the stencil test and
+    operations (stencil(3G)).
 
     ``fail`` applies when the stencil test fails, ``pass_`` when it passes and the z
     test fails, ``zpass`` when both pass -- and ``pass_`` also when z-buffering is
@@ -170,9 +177,12 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
     Enabling without stencil planes (stensize 0) is stored but has no effect: the
     manual allows stencil only where planes exist, and the kernels skip the test.
     """
+    if kwargs or session.recording is not None or len(args) != 7:
+        return record_or_refuse(stencil, args, kwargs)
+    enable, ref, func, mask, fail, pass_, zpass = args
     ctx = session.windows.get(session.current)
     if ctx is None:
-        ctx = current("stencil", (enable, ref, func, mask, fail, pass_, zpass))
+        ctx = current("stencil", args)
     if (isinstance(enable, int) and enable and isinstance(ref, int) and isinstance(func, int)
             and isinstance(mask, int) and isinstance(fail, int) and isinstance(pass_, int)
             and isinstance(zpass, int) and 0 <= func <= 7 and 0 <= fail <= 5
@@ -184,7 +194,6 @@ def stencil(enable: int, ref: int, func: int, mask: int, fail: int, pass_: int,
                                   (True, ref & _U32, func, mask & _U32, fail, pass_, zpass))
         regs._snapshot = None
         return
-    args = (enable, ref, func, mask, fail, pass_, zpass)
     on = as_int("stencil", args, "enable", enable) != 0
     if not on:
         ctx.raster.set(stencil=ctx.raster.stencil._replace(enable=False))
@@ -221,12 +230,16 @@ def _need_rgb(ctx, name: str, args: tuple) -> None:
                            "writemask()")
 
 
-@gl_function()
-def wmpack(mask: int) -> None:
-    """Packed 0xAABBGGRR colour write mask (wmpack(3G)): ``wmpack(0xFF)`` writes red
-    only, ``wmpack(0)`` no colour at all."""
-    args = (mask,)
-    ctx = current("wmpack", args)
+@gl_function(binds=(1, 1, ("int",)))
+def wmpack(*args, **kwargs) -> None:
+    """wmpack(mask): packed 0xAABBGGRR colour write mask (wmpack(3G)): ``wmpack(0xFF)``
+    writes red only, ``wmpack(0)`` no colour at all."""
+    if kwargs or session.recording is not None or len(args) != 1:
+        return record_or_refuse(wmpack, args, kwargs)
+    mask = args[0]
+    ctx = session.windows.get(session.current)
+    if ctx is None:
+        ctx = current("wmpack", args)
     if not ctx.config.rgb:
         _need_rgb(ctx, "wmpack", args)
     regs = ctx.raster

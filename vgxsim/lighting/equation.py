@@ -28,6 +28,11 @@ from typing import NamedTuple
 
 import numpy as np
 
+from vgxsim.kernels.lighting import LIGHT_COLUMNS, LMODEL_COLUMNS
+from vgxsim.kernels.lighting import light_object_runs as light_object_runs_kernel
+from vgxsim.kernels.lighting import light_vertices as light_vertices_kernel
+from vgxsim.kernels.transform import transform_points
+
 from .tables import (
     _LMC_AD,
     _LMC_AMBIENT,
@@ -58,6 +63,11 @@ _LMC_FIELDS: dict[int, tuple[tuple[str, ...], bool]] = {
 # specular highlight over the whole lit side; IRIS treats 0 as "no specular".  We
 # follow IGL's threshold exactly (so 0 < shininess < 1 is also off).
 _MIN_SHININESS = 1.0
+
+#: Fast-path switch: the lighting equation as one kernel pass over the vertices
+#: (kernels/lighting.py) instead of whole-array numpy operations per light.  False:
+#: the numpy form (tests/pipeline/test_batched_lighting.py: identical planes).
+JIT_LIGHTING = True
 
 _Vec = np.ndarray | Sequence[float] | None
 #: One entry of shade()'s ``lights``: (Light, position_eye (4,), spot_direction_eye (3,)).
@@ -322,9 +332,145 @@ def shade_runs(
     return _light_vertices(p, nrm, _MatArrays(**terms), lights, lmodel)
 
 
+def shade_object_runs(
+    obj: np.ndarray,
+    normals: np.ndarray,
+    colours: np.ndarray,
+    lit: np.ndarray,
+    counts: Sequence[int],
+    modelviews: Sequence[np.ndarray],
+    normal_matrices: Sequence[np.ndarray],
+    materials: Sequence[Material],
+    lights: Sequence[LightEntry],
+    lmodel: LightModel,
+) -> np.ndarray:
+    """Vertex colours of runs of object-space vertices, each run with its own
+    modelview, normal matrix and material, under the same lights: the lit vertices
+    taken to eye space (``p @ M`` in transform.apply's order, divided by w unless it
+    is 0) and lit by :func:`shade_runs`, the others keeping their colour.
+
+    Parameters
+    ----------
+    obj : ndarray, shape (N, 4), float64
+    normals : ndarray, shape (N, 3), float64
+        Object-space normals.
+    colours : ndarray, shape (N, 4), float64
+    lit : ndarray, shape (N,), bool
+    counts : sequence of int
+        Vertices in each run (summing to N).
+    modelviews : sequence of ndarray, shape (4, 4); normal_matrices : of shape (3, 3)
+    materials : sequence of Material
+    lights, lmodel
+        As for :func:`shade_runs` (one-sided lighting).
+
+    Returns
+    -------
+    ndarray, shape (N, 4), float64
+    """
+    if lmodel.twoside:
+        raise LightingError("shade_object_runs: two-sided lighting is lit per run (shade)")
+    reps = np.asarray(counts, dtype=np.int64)
+    terms = {name: np.array([getattr(m, name) for m in materials], np.float64)
+             for name in _MatArrays._fields}  # one row per run
+    if JIT_LIGHTING:
+        return light_object_runs_kernel(
+            np.ascontiguousarray(obj, np.float64), np.ascontiguousarray(normals, np.float64),
+            np.ascontiguousarray(colours, np.float64), np.ascontiguousarray(lit, np.bool_),
+            np.repeat(np.arange(reps.shape[0], dtype=np.int64), reps),
+            np.ascontiguousarray(modelviews, np.float64),
+            np.ascontiguousarray(normal_matrices, np.float64), terms["emission"],
+            terms["ambient"], terms["diffuse"], terms["specular"], terms["shininess"],
+            terms["alpha"], _light_table(lights), _lmodel_row(lmodel), _MIN_SHININESS)
+    out = np.array(colours, dtype=np.float64)
+    lit = np.asarray(lit, bool)
+    if not lit.any():
+        return out
+    eye_p, eye_n, lit_mats = [], [], {name: [] for name in _MatArrays._fields}
+    at = 0
+    for k, c in enumerate(reps.tolist()):
+        sel = lit[at:at + c]
+        eye = transform_points(np.ascontiguousarray(obj[at:at + c][sel], np.float64),
+                               np.ascontiguousarray(modelviews[k], np.float64))
+        eye_p.append(eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4]))
+        eye_n.append(transform_points(np.ascontiguousarray(normals[at:at + c][sel],
+                                                           np.float64),
+                                      np.ascontiguousarray(normal_matrices[k], np.float64)))
+        for name in _MatArrays._fields:
+            lit_mats[name].append(np.repeat(terms[name][k:k + 1], int(sel.sum()), axis=0))
+        at += c
+    mat = _MatArrays(**{name: np.concatenate(v) for name, v in lit_mats.items()})
+    out[lit] = _light_vertices_numpy(np.concatenate(eye_p), _normalize(np.concatenate(eye_n)),
+                                     mat, lights, lmodel)
+    return out
+
+
+def _lmodel_row(lmodel: LightModel) -> np.ndarray:
+    """The kernel's light-model row (kernels/lighting.py LMODEL_COLUMNS)."""
+    lm = np.zeros(LMODEL_COLUMNS)
+    lm[0:3] = np.asarray(lmodel.ambient, dtype=np.float64)
+    lm[3] = 1.0 if lmodel.local_viewer else 0.0
+    lm[4], lm[5] = lmodel.attenuation
+    lm[6] = lmodel.attenuation2
+    return lm
+
+
 def _light_vertices(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
                     lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
     """The lighting equation for (N, 3) eye positions and unit normals."""
+    if JIT_LIGHTING:
+        return _light_vertices_jit(p, nrm, mat, lights, lmodel)
+    return _light_vertices_numpy(p, nrm, mat, lights, lmodel)
+
+
+def _per_vertex(term, n: int, width: int) -> np.ndarray:
+    """A material term, (3,) or scalar for all vertices or one per vertex, as a
+    C-contiguous (n, 3) or (n,) float64 array."""
+    shape = (n, width) if width else (n,)
+    return np.ascontiguousarray(np.broadcast_to(np.asarray(term, np.float64), shape))
+
+
+def _light_table(lights: Sequence[LightEntry]) -> np.ndarray:
+    """The kernel's light rows (kernels/lighting.py), derived as the numpy form
+    derives them: the same position, direction and spot-axis arithmetic."""
+    table = np.zeros((len(lights), LIGHT_COLUMNS))
+    for k, (light, pos_eye, spot_eye) in enumerate(lights):
+        pos = np.asarray(light.position if pos_eye is None else pos_eye, dtype=np.float64)
+        if pos.shape != (4,):
+            raise LightingError(f"shade: light position must have shape (4,), got {pos.shape}")
+        row = table[k]
+        if pos[3] != 0.0:
+            row[0] = 1.0
+            row[1:4] = pos[:3] / pos[3]
+        else:
+            row[1:4] = _normalize(pos[:3])
+        row[4:7] = np.asarray(light.lcolor, dtype=np.float64)
+        row[7:10] = np.asarray(light.ambient, dtype=np.float64)
+        if light.spot_spread < 180.0:
+            sdir = np.asarray(light.spot_direction if spot_eye is None else spot_eye,
+                              dtype=np.float64)
+            row[10] = 1.0
+            row[11:14] = _normalize(sdir.reshape(3))
+            row[14] = np.cos(np.radians(light.spot_spread))
+            row[15] = light.spot_exponent
+    return table
+
+
+def _light_vertices_jit(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
+                        lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
+    """:func:`_light_vertices_numpy` as one kernel pass (kernels/lighting.py)."""
+    n = p.shape[0]
+    return light_vertices_kernel(
+        np.ascontiguousarray(p, np.float64), np.ascontiguousarray(nrm, np.float64),
+        _per_vertex(mat.emission, n, 3), _per_vertex(mat.ambient, n, 3),
+        _per_vertex(mat.diffuse, n, 3), _per_vertex(mat.specular, n, 3),
+        _per_vertex(mat.shininess, n, 0), _per_vertex(mat.alpha, n, 0),
+        _light_table(lights), _lmodel_row(lmodel), _MIN_SHININESS)
+
+
+def _light_vertices_numpy(p: np.ndarray, nrm: np.ndarray, mat: _MatArrays,
+                          lights: Sequence[LightEntry], lmodel: LightModel) -> np.ndarray:
+    """The lighting equation as whole-array numpy operations (the reference form of
+    the kernel, and what :data:`JIT_LIGHTING` off runs)."""
     n_vert = p.shape[0]
     rgb = mat.emission + mat.ambient * np.asarray(lmodel.ambient, dtype=np.float64)
 

@@ -31,7 +31,8 @@ from vgxsim.state.colormap import default_colormap
 from vgxsim.state.matrices import MatrixState
 from vgxsim.state.planes import ZMAX, ZMIN, Framebuffer, PlaneConfig, unpack_rgba
 from vgxsim.state.registers import RasterRegisters
-from vgxsim.stream.recorder import CommandStream
+from vgxsim.stream.opcodes import CLEAR as CLEAR_OP
+from vgxsim.stream.recorder import MAX_STREAM_OPS, CommandStream
 
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
     "polygon", "tmesh", "qstrip", "line", "closedline", "point")
@@ -190,7 +191,7 @@ class Context:
         """The command batch, after decoding the command stream and queuing any
         deferred triangle draws (so every user of the batch sees primitives in
         drawing order)."""
-        if len(self.stream.ops):
+        if len(self.stream):
             drain(self)
         if self.pending_triangles is not None:
             commit_triangles(self)
@@ -236,7 +237,7 @@ class Context:
             Triangles only: per-vertex (s, t), as t2* gives them (docs/numeric_model.md
             s. 13; texgen replaces the coordinates it generates).
         """
-        if len(self.stream.ops):
+        if len(self.stream):
             drain(self)  # what the stream holds was drawn first
         pipeline_draw_arrays(self, self.draw_state(), self.lmcolor_set, kind, obj, colours,
                              normals, lit, swaps, indices, provoking, pattern_offset,
@@ -248,7 +249,14 @@ class Context:
         select mode, which draws nothing (pick(3G))."""
         if self.select_hook is not None:
             return
-        self.batch.add_clear(planes, colour, z, stencil, self.raster.clear_state())
+        # Recorded in the stream (a CLEAR op), so the clears between the 1991 frame's
+        # passes (sclear before each light's shadow faces) cost no flush of their own.
+        st = self.stream
+        if len(st) > MAX_STREAM_OPS:
+            drain(self)
+        st.ops.append(CLEAR_OP)
+        st.ops.append(len(st.clears))
+        st.clears.append((planes, colour, z, stencil, self.raster.clear_state()))
 
     def flush(self) -> None:
         """Render everything queued."""

@@ -3,29 +3,30 @@
 The decode kernel (:func:`vgxsim.kernels.decode.decode_stream`) resolves every
 vertex's colour, normal and lit flag in one pass and cuts the primitives; here the
 primitives are grouped -- consecutive triangle primitives of one draw state become
-one triangle list, fanned at once -- and handed to the geometry passes
-(:mod:`.draw`).
+one triangle list, assembled in one kernel pass
+(:func:`vgxsim.kernels.decode.assemble_triangles`) -- and handed to the geometry
+passes (:mod:`.draw`); the lit groups of the whole flush are lit together
+(:func:`.draw.shade_groups`).  Clears are rows of the same table (CLEAR ops), done
+in order between the primitives, so the clears of a frame cost no decode of their
+own.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from vgxsim.geometry import assembly
 from vgxsim.geometry.transform import apply
-from vgxsim.kernels.decode import decode_stream
+from vgxsim.kernels.decode import assemble_triangles, decode_stream
 from vgxsim.kernels.texture import decode_texcoords
 from vgxsim.stream.opcodes import (
+    CLEAR_KIND,
     CLOSEDLINE,
     LINE,
     NAME_OF,
+    P_CLEAR,
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
-    P_SWAP0,
-    P_SWAP1,
-    P_V0,
-    P_V1,
     PMV,
     POINT,
     POLYGON,
@@ -34,38 +35,32 @@ from vgxsim.stream.opcodes import (
 )
 
 from . import draw
-from .draw import defer_triangles, draw_arrays
+from .draw import commit_triangles, defer_triangles, draw_arrays
 
 _TRIANGLES = np.zeros(16, bool)
 _TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
-_POLYGONS = np.zeros(16, bool)
-_POLYGONS[[POLYGON, PMV]] = True
 
 
 def drain(ctx) -> None:
     """Decode and draw the window's stream up to its open primitive, if any."""
     s = ctx.stream
-    nops = len(s.ops)
+    nops = len(s)
     if nops == 0:
         return
-    cut_ops, cut_fl = (s.open_ops, s.open_fl) if ctx.prim is not None else (nops, len(s.fl))
+    cut_ops, cut_fl = (s.open_ops, s.open_fl) if ctx.prim is not None else (nops, s.n_floats())
     if cut_ops <= 0:
         return
-    ops = np.array(s.ops, dtype=np.int64)
-    fl = np.array(s.fl, dtype=np.float64) if s.fl else np.zeros(0)
+    ops, fl = s.arrays()
     pos, col, nrm, sent, prims, swaps = decode_stream(ops, cut_ops, fl, s.attrs)
     tc = decode_texcoords(ops, cut_ops, fl, s.tex_attrs) if s.has_texcoords else None
-    if cut_ops == nops:
-        s.ops = []
-        s.fl = []
-    else:
-        s.ops = s.ops[cut_ops:]
-        s.fl = s.fl[cut_fl:]
+    s.keep_from(ops, fl, cut_ops, cut_fl)
+    if cut_ops < nops:
         s.open_ops, s.open_fl = 0, 0
     records = ctx.states.records
-    _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc)
+    _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc, s.clears)
     if ctx.prim is None:
         ctx.states.clear()
+        s.clears = []
         s.attrs[9] = -1.0
         s.raster = None  # the next bgn* records its state again
 
@@ -79,10 +74,20 @@ def _lit(state, sent: np.ndarray) -> np.ndarray:
     return sent
 
 
-def _select_prims(ctx, records, pos, prims, swaps) -> None:
+def _clear(ctx, planes: int, colour: int, z: int, stencil: int, rs) -> None:
+    """A CLEAR op: the triangles queued before it are drawn first."""
+    commit_triangles(ctx)
+    ctx.raw_batch.add_clear(planes, colour, z, stencil, rs)
+
+
+def _select_prims(ctx, records, pos, prims, swaps, clears) -> None:
     """Pick/select mode: hand each primitive to the hit test in clip space (its own
-    state's transform, which holds the pick matrix), drawing nothing (pick(3G))."""
+    state's transform, which holds the pick matrix), drawing nothing (pick(3G)); a
+    clear recorded before the mode began is still done."""
     for kind, v0, v1, si, _lms, s0, s1 in prims[:, :7].tolist():
+        if kind == CLEAR_KIND:
+            _clear(ctx, *clears[s0])
+            continue
         if v1 == v0:
             continue
         name = "polygon" if kind in (POLYGON, PMV) else NAME_OF[kind]
@@ -90,17 +95,18 @@ def _select_prims(ctx, records, pos, prims, swaps) -> None:
                         None, records[si].user_planes)
 
 
-def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None) -> None:
+def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears=()) -> None:
     npr = prims.shape[0]
     if npr == 0:
         return
     if ctx.select_hook is not None:
-        _select_prims(ctx, records, pos, prims, swaps)
+        _select_prims(ctx, records, pos, prims, swaps, clears)
         return
     kinds = prims[:, P_KIND]
     tri = _TRIANGLES[kinds]
     if draw.MERGE_FRAGMENT_STATES:
-        geometry = np.asarray(ctx.states.geometry, np.int64)[prims[:, P_STATE]]
+        # (-1 for a CLEAR before any state record: the appended entry.)
+        geometry = np.asarray(ctx.states.geometry + [-1], np.int64)[prims[:, P_STATE]]
     else:
         geometry = prims[:, P_STATE]
     key = geometry * 2 + prims[:, P_LMCOLOR_SET]
@@ -117,6 +123,9 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None) -> Non
     lit_groups: list = []
     for a, b in zip(starts, ends, strict=True):
         kind, v0, v1, si, lms = rows[a][0], rows[a][1], rows[b - 1][2], rows[a][3], rows[a][4]
+        if kind == CLEAR_KIND:
+            jobs.append((_clear, (ctx, *clears[rows[a][P_CLEAR]]), {}))
+            continue
         if v1 == v0:
             continue  # bgn*/end* without vertices draws nothing
         state = records[si]
@@ -142,9 +151,10 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None) -> Non
             continue
         tris, prov, tri_prim = _group_triangles(prims[a:b], v0, swaps)
         tri_states = None
-        recs = [records[r[3]] for r in rows[a:b]]
-        if any(r.raster is not state.raster for r in recs):
-            tri_states = (recs, tri_prim)  # one entry per primitive of the group
+        if not (prims[a:b, P_STATE] == si).all():  # one record: one raster (most groups)
+            recs = [records[r[3]] for r in rows[a:b]]
+            if any(r.raster is not state.raster for r in recs):
+                tri_states = (recs, tri_prim)  # one entry per primitive of the group
         normals = nrm[sl] if state.lighting is not None else None
         cols = col[sl] if _wants_colour(state) else None
         lit = lit if normals is not None else None
@@ -171,54 +181,10 @@ def _wants_colour(state) -> bool:
 
 def _group_triangles(block: np.ndarray, base: int, swaps: np.ndarray):
     """Triangles (indices from ``base``), flat-shading vertices and primitive (its row
-    in ``block``) of consecutive primitives (rows of the decoded primitive table):
-    each run of polygons is fanned in one vectorized step, each as
-    assembly.polygon_fan fans it (first vertex, i, i + 1; the last vertex provokes)."""
-    poly = _POLYGONS[block[:, P_KIND]]
-    n = block.shape[0]
-    cuts = np.flatnonzero(~(poly[1:] & poly[:-1])) + 1  # a run of polygons, or one row
-    bounds = [0, *cuts.tolist(), n]
-    tris, prov, recs = [], [], []
-    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
-        if poly[a]:
-            start = block[a:b, P_V0] - base
-            size = block[a:b, P_V1] - block[a:b, P_V0]
-            t, pv, ntri = _fans(start, size)
-            tris.append(t)
-            prov.append(pv)
-            recs.append(np.repeat(np.arange(a, b, dtype=np.int64), ntri))
-            continue
-        kind, v0, v1, s0, s1 = (int(block[a, c]) for c in (P_KIND, P_V0, P_V1, P_SWAP0,
-                                                            P_SWAP1))
-        if v1 == v0:
-            continue
-        count = v1 - v0
-        off = v0 - base
-        if kind == TMESH:
-            t = assembly.tmesh_triangles(count, swaps[s0:s1].tolist())
-            pv = t[:, 2].copy()
-        else:
-            t = assembly.qstrip_triangles(count)
-            pv = t.max(axis=1) if t.shape[0] else np.zeros(0, np.int64)
-        t = np.asarray(t, np.int64).reshape(-1, 3)
-        tris.append(t + off)
-        prov.append(np.asarray(pv, np.int64) + off)
-        recs.append(np.full(t.shape[0], a, np.int64))
-    if not tris:
-        return np.zeros((0, 3), np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64)
-    return (np.concatenate(tris).astype(np.int64), np.concatenate(prov).astype(np.int64),
-            np.concatenate(recs))
-
-
-def _fans(start: np.ndarray, size: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Fan triangles (first, i, i + 1) of consecutive polygons given by their first
-    vertex and size (int64 arrays), in order, with each polygon's last vertex as the
-    flat-shading vertex; and the number of triangles of each polygon."""
-    ntri = np.maximum(size - 2, 0)
-    first = np.repeat(start, ntri)
-    k = np.arange(int(ntri.sum()), dtype=np.int64) - np.repeat(np.cumsum(ntri) - ntri, ntri)
-    tris = np.stack([first, first + 1 + k, first + 2 + k], axis=1)
-    return tris, np.repeat(start + size - 1, ntri), ntri
+    in ``block``) of consecutive triangle primitives, in one kernel pass
+    (:func:`vgxsim.kernels.decode.assemble_triangles`, which assembles each kind as
+    :mod:`vgxsim.geometry.assembly` does)."""
+    return assemble_triangles(np.ascontiguousarray(block), base, swaps)
 
 
 __all__ = ["drain", "LINE", "CLOSEDLINE", "POINT"]

@@ -16,7 +16,7 @@ from vgxsim.geometry import assembly
 from vgxsim.geometry.pipeline import Viewing, draw_points, draw_polyline, draw_triangles
 from vgxsim.geometry.texgen import eye_texture_coords
 from vgxsim.geometry.transform import apply
-from vgxsim.lighting import shade, shade_runs
+from vgxsim.lighting import shade, shade_object_runs
 from vgxsim.state.raster import FLAT, needs_colour
 
 from .depthcue import cue_vertices
@@ -82,15 +82,6 @@ def shade_vertices(state: DrawState, lmcolor_set: bool, obj, normals, colours, l
     return out
 
 
-def _eye_space(state: DrawState, obj, normals, lit):
-    """Eye-space positions and normals of the lit vertices (as :func:`shade_vertices`
-    takes them there)."""
-    ls = state.lighting
-    eye = apply(obj[lit], ls.modelview)
-    pos = eye[:, :3] / np.where(eye[:, 3:4] == 0, 1.0, eye[:, 3:4])
-    return pos, apply(normals[lit], ls.normal_matrix)
-
-
 def shade_groups(groups: list) -> list:
     """Vertex colours of several groups, lit together where they can be.
 
@@ -104,9 +95,10 @@ def shade_groups(groups: list) -> list:
     list
         Per group, its (N, 4) float64 colours, or None for a group lit on its own
         (two-sided lighting, an lmcolor override, or no lit vertex).  Groups under
-        the same lights and lighting model share one :func:`~vgxsim.lighting.shade_runs`
-        pass, each with its own material: the equation is evaluated vertex by vertex,
-        so the colours are those one pass per group gives.
+        the same lights and lighting model share one
+        :func:`~vgxsim.lighting.shade_object_runs` pass, each with its own
+        modelview and material: the equation is evaluated vertex by vertex, so the
+        colours are those one pass per group gives.
     """
     out: list = [None] * len(groups)
     runs: dict[tuple, list[int]] = {}
@@ -120,20 +112,18 @@ def shade_groups(groups: list) -> list:
     for members in runs.values():
         if len(members) == 1:
             continue  # one group: shade_vertices does the same
-        eye = [_eye_space(groups[i][0], groups[i][2], groups[i][3], groups[i][5])
-               for i in members]
-        ls = groups[members[0]][0].lighting
-        lit_rgba = shade_runs(np.concatenate([e[0] for e in eye]),
-                              np.concatenate([e[1] for e in eye]),
-                              [groups[i][0].lighting.material for i in members],
-                              [e[0].shape[0] for e in eye], list(ls.lights), ls.lmodel)
+        g = [groups[i] for i in members]
+        ls = g[0][0].lighting
+        counts = [m[2].shape[0] for m in g]
+        rgba = shade_object_runs(
+            np.concatenate([m[2] for m in g]), np.concatenate([m[3] for m in g]),
+            np.concatenate([m[4] for m in g]), np.concatenate([m[5] for m in g]), counts,
+            [m[0].lighting.modelview for m in g], [m[0].lighting.normal_matrix for m in g],
+            [m[0].lighting.material for m in g], list(ls.lights), ls.lmodel)
         at = 0
-        for i, e in zip(members, eye, strict=True):
-            cols, lit = groups[i][4], groups[i][5]
-            rgba = np.array(cols, dtype=np.float64)
-            rgba[lit] = lit_rgba[at:at + e[0].shape[0]]
-            at += e[0].shape[0]
-            out[i] = rgba
+        for i, c in zip(members, counts, strict=True):
+            out[i] = rgba[at:at + c]
+            at += c
     return out
 
 

@@ -27,6 +27,9 @@ END        --                           --
 SWAP       --                           -- (swaptmesh)
 STATE      state-record index           -- (the interned draw state for what follows)
 T          --                           s, t: t2*, the current texture coordinate
+CLEAR      index into the stream's      -- (clear, czclear, zclear, sclear: queued in
+           ``clears``                   drawing order with the primitives, so a clear
+                                        between two passes needs no flush of its own)
 =========  ===========================  ===============================================
 """
 
@@ -36,9 +39,14 @@ V, SYNC, C, CM, CSKIP, CRAW, N, BGN, END, SWAP, STATE = range(11)
 #: t2*: s, t in the float payload; the vertices after it take that texture coordinate
 #: (decoded by vgxsim.kernels.texture.decode_texcoords, only for streams that hold one).
 T = 11
+#: A clear of the raster rectangle; its planes, values and clear state are the
+#: stream's ``clears[index]`` (vgxsim.stream.recorder.CommandStream).
+CLEAR = 12
 
 #: Primitive kinds carried by BGN.  PMV is the old-style pmv/pdr/pclos polygon.
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT, PMV = range(7)
+#: The primitive-table kind of a decoded CLEAR (no vertices; P_CLEAR names it).
+CLEAR_KIND = 7
 KIND_OF = {"polygon": POLYGON, "tmesh": TMESH, "qstrip": QSTRIP, "line": LINE,
            "closedline": CLOSEDLINE, "point": POINT, "pmv": PMV}
 NAME_OF = {v: k for k, v in KIND_OF.items()}
@@ -48,3 +56,5 @@ TRIANGLE_KINDS = (POLYGON, TMESH, QSTRIP, PMV)
 #: Columns of a decoded primitive row (int64).
 P_KIND, P_V0, P_V1, P_STATE, P_LMCOLOR_SET, P_SWAP0, P_SWAP1 = range(7)
 PRIM_COLUMNS = 7
+#: A CLEAR row keeps its index into the stream's clears in the P_SWAP0 column.
+P_CLEAR = P_SWAP0

@@ -8,6 +8,13 @@ given -- nothing is allocated per vertex beyond the lists' amortised growth -- a
 that is 3-4x cheaper than ``array.array.extend`` (CPython 3.11 converts item by
 item there; measured 110 against 495 ns for one vertex), while the conversion at
 the flush costs about 18 ns a float.
+
+A display object's chunk is converted once, when it is first called: ``callobj``
+appends the chunk's int64 and float64 arrays to the stream's ``parts`` (after the
+lists recorded before it), so replaying the 1991 program's 640-vertex floor neither
+copies its floats into the lists nor converts them again at every flush.  A chunk of
+fewer than :data:`SPLICE_MIN_FLOATS` floats is copied into the lists instead: one
+more part costs more at the flush (about 1 us) than copying a quad's numbers.
 """
 
 from __future__ import annotations
@@ -21,6 +28,8 @@ ATTRS = 11
 #: A stream holding more opcodes than this is decoded at the next bgn* (a "full
 #: stream" flush: memory stays bounded for programs that never read back).
 MAX_STREAM_OPS = 1 << 20
+#: Chunks with at least this many floats are spliced as arrays (see the docstring).
+SPLICE_MIN_FLOATS = 256
 
 
 class CommandStream:
@@ -40,12 +49,23 @@ class CommandStream:
         The draw state the last STATE op recorded (compared by identity at bgn*).
     open_ops, open_fl : int
         Where the open primitive's BGN starts (a flush while a primitive is open
-        decodes only what precedes it).
+        decodes only what precedes it), counted from the start of ``parts``.
+    clears : list of (planes, colour, z, stencil, RasterState)
+        The clears the stream's CLEAR ops name (emptied with the state table).
+    parts : list of (ops, fl)
+        What precedes ``ops`` and ``fl`` in the stream: lists recorded before a
+        splice and the int64 / float64 arrays of the chunks spliced
+        (:meth:`splice`); ``parts_ops`` and ``parts_fl`` are their total lengths.
     """
 
     def __init__(self):
         self.ops: list = []
         self.fl: list = []
+        self.parts: list = []
+        self.parts_ops = 0
+        self.parts_fl = 0
+        # CLEAR ops' arguments, by index: (planes, colour, z, stencil, clear state).
+        self.clears: list = []
         self.attrs = np.zeros(ATTRS)
         self.attrs[9] = -1.0
         self.attrs[10] = -1.0
@@ -64,7 +84,50 @@ class CommandStream:
         self.vertex_serial = None
 
     def __len__(self) -> int:
-        return len(self.ops)
+        return self.parts_ops + len(self.ops)
+
+    def n_floats(self) -> int:
+        """Floats in the whole stream (``parts`` and ``fl``)."""
+        return self.parts_fl + len(self.fl)
+
+    def splice(self, chunk: Chunk, colour_op: int) -> None:
+        """Append a display-object chunk (callobj), its colour calls as ``colour_op``."""
+        ops, fl, ops_list = chunk.arrays_for(colour_op)
+        if fl.shape[0] < SPLICE_MIN_FLOATS:
+            self.ops.extend(ops_list)
+            self.fl.extend(chunk.fl)
+            return
+        if self.ops or self.fl:
+            self.parts.append((self.ops, self.fl))
+            self.parts_ops += len(self.ops)
+            self.parts_fl += len(self.fl)
+            self.ops = []
+            self.fl = []
+        self.parts.append((ops, fl))
+        self.parts_ops += ops.shape[0]
+        self.parts_fl += fl.shape[0]
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        """The whole stream as one int64 and one float64 array."""
+        ops = [np.asarray(o, np.int64) for o, _f in self.parts]
+        ops.append(np.array(self.ops, np.int64))
+        fl = [np.asarray(f, np.float64) for _o, f in self.parts]
+        fl.append(np.array(self.fl, np.float64))
+        if len(ops) == 1:
+            return ops[0], fl[0]
+        return np.concatenate(ops), np.concatenate(fl)
+
+    def keep_from(self, ops: np.ndarray, fl: np.ndarray, cut_ops: int, cut_fl: int) -> None:
+        """Drop everything before ``cut_ops`` / ``cut_fl`` (``ops`` and ``fl``: the
+        stream as :meth:`arrays` gave it); the rest stays, as one part."""
+        self.ops = []
+        self.fl = []
+        self.parts = []
+        self.parts_ops = self.parts_fl = 0
+        if cut_ops < ops.shape[0] or cut_fl < fl.shape[0]:
+            self.parts.append((ops[cut_ops:], fl[cut_fl:]))
+            self.parts_ops = ops.shape[0] - cut_ops
+            self.parts_fl = fl.shape[0] - cut_fl
 
 
 def _payload(op: int) -> tuple[int, int]:
@@ -105,29 +168,35 @@ class Chunk:
         self.normal_after_colour = False
         self.texcoord: tuple | None = None
         self.gpos: tuple | None = None
-        self._variants: dict[int, list] = {}
+        self._variants: dict[tuple, tuple] = {}
 
-    def ops_for(self, colour_op: int) -> list:
-        """The chunk's opcodes with every CRAW rewritten to ``colour_op`` (cached)."""
-        if self.last_colour is None:
-            return self.ops
-        out = self._variants.get(colour_op)
+    def arrays_for(self, colour_op: int) -> tuple[np.ndarray, np.ndarray, list]:
+        """The chunk's opcodes, with every CRAW rewritten to ``colour_op``, and its
+        floats, as read-only int64 and float64 arrays, and the opcodes as a list
+        (made once per colour op and length: a chunk grows only while its object is
+        recorded)."""
+        key = (colour_op if self.last_colour is not None else -1, len(self.ops), len(self.fl))
+        out = self._variants.get(key)
         if out is None:
             codes = np.array(self.ops, dtype=np.int64)
-            mask = np.zeros(codes.shape[0], bool)
-            i = 0
-            n = codes.shape[0]
-            while i < n:  # only opcodes, never payload, are rewritten
-                op = int(codes[i])
-                if op == CRAW:
-                    mask[i] = True
-                i += 1 + _payload(op)[0]
-            codes[mask] = colour_op
-            out = self._variants[colour_op] = codes.tolist()
+            if self.last_colour is not None:
+                mask = np.zeros(codes.shape[0], bool)
+                i = 0
+                n = codes.shape[0]
+                while i < n:  # only opcodes, never payload, are rewritten
+                    op = int(codes[i])
+                    if op == CRAW:
+                        mask[i] = True
+                    i += 1 + _payload(op)[0]
+                codes[mask] = colour_op
+            floats = np.array(self.fl, dtype=np.float64)
+            codes.flags.writeable = False
+            floats.flags.writeable = False
+            out = self._variants[key] = (codes, floats, codes.tolist())
         return out
 
     def empty(self) -> bool:
         return len(self.ops) == 0
 
 
-__all__ = ["CommandStream", "Chunk", "ATTRS", "BGN", "END", "SWAP"]
+__all__ = ["CommandStream", "Chunk", "ATTRS", "BGN", "END", "SWAP", "SPLICE_MIN_FLOATS"]
