@@ -7,8 +7,8 @@ current at that moment, the current normal and whether the vertex is lit -- so a
 colour changed between vertices gives Gouraud shading, and with
 ``lmcolor(LMC_COLOR)`` "whichever of colour or normal was sent last" decides whether
 the vertex is lit or coloured (lmcolor(3G); ``Context.last_sent``, which the colour
-calls of :mod:`._color` set to ``'colour'`` and ``n3f`` to ``'normal'``).  At
-``end*`` the vertices become numpy arrays and one ``Context.draw_arrays`` call.
+calls of :mod:`._color` set to ``'colour'`` and ``n3f`` to ``'normal'``).  ``end*``
+records one END op; no array is made until the stream is decoded.
 
 Argument conventions follow CPython's historical ``gl`` binding
 (shared/reference/cpython_gl_module.md 1.4-1.6): ``v3f(x, y, z)`` and
