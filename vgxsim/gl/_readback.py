@@ -158,7 +158,8 @@ def lrectread(x1: int, y1: int, x2: int, y2: int) -> bytes:
 
 
 def _words(name: str, args: tuple, data, n: int) -> np.ndarray:
-    """The pixel array of lrectwrite: bytes of >= n little-endian words, or n ints."""
+    """The pixel array of lrectwrite: bytes of >= n little-endian words (uint32), or
+    n ints (int64, 0 .. 2**32 - 1)."""
     if isinstance(data, (bytes, bytearray, memoryview)):
         raw = bytes(data)
         if len(raw) < 4 * n:
@@ -166,7 +167,9 @@ def _words(name: str, args: tuple, data, n: int) -> np.ndarray:
                                f"rectangle needs {n} pixels = {4 * n} bytes")
         # CPython's binding did not check the size (so pixmode(PM_SIZE) kept working);
         # extra bytes are ignored here, too few are an error.
-        return np.frombuffer(raw, dtype="<u4", count=n).astype(np.int64)
+        # A read-only view (no copy of a full window's 5 MB): every use indexes or
+        # copies it.
+        return np.frombuffer(raw, dtype="<u4", count=n)
     if isinstance(data, np.ndarray) or (isinstance(data, Sequence) and not isinstance(
             data, str)):
         arr = as_array(name, args, "data", data)
@@ -240,7 +243,9 @@ def _copy_into_planes(batch: CommandBatch, rs, x0: int, y0: int, words: np.ndarr
     if xa > xb or ya > yb or wm == 0 or not planes:
         return
     batch.flush()
-    src = (words[ya - y0:yb - y0 + 1, xa - x0:xb - x0 + 1] & 0xFFFFFFFF).astype(np.uint32)
+    src = words[ya - y0:yb - y0 + 1, xa - x0:xb - x0 + 1]
+    if src.dtype != np.uint32:  # wraps modulo 2**32, as the fragment path masks
+        src = src.astype(np.uint32)
     for plane in planes:
         dst = plane[ya:yb + 1, xa:xb + 1]
         if wm == 0xFFFFFFFF:
