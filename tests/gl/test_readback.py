@@ -267,3 +267,87 @@ def test_read_pixels_argument_types():
         gl.read_pixels("front", ["z"])
     with pytest.raises(GLValueError, match="buffer must be"):
         gl.read_pixels("left")
+
+
+def _pixel_write_scene(seed: int):
+    """Random window, draw state and pixel writes (lrectwrite, zoomed lrectwrite,
+    rectcopy, writeRGB) on top of queued drawing; returns the colour, z and stencil
+    planes after everything has been rendered."""
+    rng = np.random.default_rng(seed)
+    w, h = int(rng.integers(5, 24)), int(rng.integers(4, 18))
+    double = bool(rng.integers(2))
+    ctx = rgb_window(w, h, double=double, stencil=4)
+    ctx.clear_planes(CLEAR_COLOUR | CLEAR_Z | CLEAR_STENCIL, int(rng.integers(0, 1 << 32)),
+                     z=-3, stencil=5)
+    for _ in range(4):
+        if double:
+            gl.frontbuffer(int(rng.integers(2)))
+            gl.backbuffer(int(rng.integers(2)))
+        # Per-fragment state that pixel writes must ignore.
+        gl.zbuffer(int(rng.integers(2)))
+        gl.blendfunction(*[(GL.BF_ONE, GL.BF_ZERO), (GL.BF_SA, GL.BF_MSA)][rng.integers(2)])
+        gl.logicop([GL.LO_SRC, GL.LO_XOR][rng.integers(2)])
+        gl.afunction(200, [GL.AF_ALWAYS, GL.AF_NEVER][rng.integers(2)])
+        gl.wmpack([0xFFFFFFFF, 0, int(rng.integers(0, 1 << 32))][rng.integers(3)])
+        l, b = int(rng.integers(0, w)), int(rng.integers(0, h))
+        gl.viewport(l, int(rng.integers(l, w + 3)), b, int(rng.integers(b, h + 3)))
+        if rng.integers(2):
+            gl.scrmask(int(rng.integers(0, w)), int(rng.integers(0, w)),
+                       int(rng.integers(0, h)), int(rng.integers(0, h)))
+        gl.rectzoom(*[(1, 1), (2, 1), (1.5, 3)][rng.integers(3)])
+        x1, y1 = int(rng.integers(-4, w)), int(rng.integers(-4, h))
+        x2, y2 = x1 + int(rng.integers(0, w + 4)), y1 + int(rng.integers(0, h + 4))
+        data = rng.integers(0, 1 << 32, (x2 - x1 + 1) * (y2 - y1 + 1)).tolist()
+        gl.lrectwrite(x1, y1, x2, y2, data)
+        gl.rectcopy(int(rng.integers(-2, w)), int(rng.integers(-2, h)), int(rng.integers(0, w)),
+                    int(rng.integers(0, h)), int(rng.integers(-3, w)), int(rng.integers(-3, h)))
+        gl.cmov2i(int(rng.integers(0, w)), int(rng.integers(0, h)))
+        gl.writeRGB(3, [1, 2, 3], [4, 5, 6], [7, 8, 9])
+    ctx.flush()
+    planes = [ctx.fb.front.copy(), ctx.fb.z.copy(), ctx.fb.stencil.copy()]
+    if double:
+        planes.append(ctx.fb.back.copy())
+    return planes
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_plane_copy_writes_what_the_fragment_path_writes(seed, monkeypatch):
+    """The PLANE_COPY switch (vgxsim/gl/_readback.py): pixel writes copied straight
+    into the planes give the same planes as one queued fragment per pixel (the
+    OpenGL backend's batch always takes the fragment path)."""
+    from vgxsim.backends import get_backend
+    from vgxsim.gl import _readback
+
+    copies = []
+    real = _readback._copy_into_planes
+    monkeypatch.setattr(_readback, "_copy_into_planes",
+                        lambda *a: (copies.append(1), real(*a)))
+    got = {}
+    for flag in (True, False):
+        monkeypatch.setattr(_readback, "PLANE_COPY", flag)
+        session.reset()
+        got[flag] = _pixel_write_scene(seed)
+        assert bool(copies) == (flag and get_backend() == "software")
+        copies.clear()
+    for fast, general in zip(got[True], got[False], strict=True):
+        np.testing.assert_array_equal(fast, general)
+
+
+@pytest.mark.parametrize("flag", [True, False])
+def test_lrectwrite_into_the_overlay_planes_keeps_their_bits(flag, monkeypatch):
+    """drawmode(OVERDRAW): a 2-bit overlay keeps the low two bits of each word, by
+    either write path; the normal planes are untouched."""
+    from vgxsim.gl import _readback
+
+    monkeypatch.setattr(_readback, "PLANE_COPY", flag)
+    gl.prefsize(4, 2)
+    g = gl.winopen("ov")
+    gl.RGBmode()
+    gl.overlay(2)
+    gl.gconfig()
+    ctx = session.windows[g]
+    gl.drawmode(GL.OVERDRAW)
+    gl.lrectwrite(0, 0, 3, 1, [4, 5, 6, 7, 0xFF, 9, 10, 11])
+    gl.drawmode(GL.NORMALDRAW)
+    assert ctx.layer_buffer("overlay").tolist() == [[0, 1, 2, 3], [3, 1, 2, 3]]
+    assert not ctx.colour_buffer("front").any()

@@ -106,3 +106,28 @@ def test_enormous_values_saturate(op):
     acc = np.array([[[100, 100, 100, 100], [-100, -100, -100, -100]]], np.int16)
     (k_acc, _), (n_acc, _) = run_both(op, 1e20, colour, acc, (0, 1, 0, 0), 0xFFFFFFFF)
     np.testing.assert_array_equal(k_acc, n_acc)
+
+
+def test_hand_computed_clear_and_clear_accumulate():
+    """AC_CLEAR stores round(value) in every component; AC_CLEAR_ACCUMULATE replaces the
+    old contents with round(value * component)."""
+    colour = np.array([[0x80FF0A01, 0x00000000]], np.uint32)  # r 1, g 10, b 255, a 128
+    acc = np.full((1, 2, 4), 1234, np.int16)
+    accumulate(acc, colour, AC_CLEAR, -2.5, 0, 1, 0, 0, 0xFFFFFFFF)
+    assert acc.tolist() == [[[-2] * 4, [-2] * 4]]  # floor(-2.5 + 0.5) = -2
+    accumulate(acc, colour, AC_CLEAR_ACCUMULATE, 1.5, 0, 0, 0, 0, 0xFFFFFFFF)
+    # round(1.5), round(15), round(382.5) = 383, round(192); the second pixel keeps -2.
+    assert acc.tolist() == [[[2, 15, 383, 192], [-2] * 4]]
+    accumulate(acc, colour, AC_ACCUMULATE, 200.0, 0, 0, 0, 0, 0xFFFFFFFF)
+    assert acc[0, 0].tolist() == [202, 2015, 32767, 25792]  # 383 + 51000 saturates
+
+
+def test_hand_computed_return_through_write_mask():
+    """AC_RETURN clamps round(value * acc) to 0..255 and writes only the mask's bits."""
+    colour = np.array([[0x11223344]], np.uint32)
+    acc = np.array([[[100, -7, 300, 51]]], np.int16)
+    accumulate(acc, colour, AC_RETURN, 0.5, 0, 0, 0, 0, 0x0F00FF00)
+    # r 50 -> 0x32 (not written), g -3 -> 0x00, b 150 -> 0x96 (not written), a 25.5 -> 26.
+    # Written bits: all of green, the low nibble of alpha (26 = 0x1A, so 0xA).
+    assert int(colour[0, 0]) == 0x1A220044
+    assert acc.tolist() == [[[100, -7, 300, 51]]]

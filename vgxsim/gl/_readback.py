@@ -22,8 +22,9 @@ so ``bytes[0]`` is the red byte of the lower-left pixel.  ``np.frombuffer(s, '<u
 turns it back into words.
 
 Reads see everything drawn so far (the command batch is flushed first) from the
-buffer ``readsource`` selects.  Writes (``lrectwrite``, ``rectcopy``) are queued in
-the command batch like any drawing, so they land in order with it.
+buffer ``readsource`` selects.  Writes (``lrectwrite``, ``rectcopy``) land in order
+with the drawing before them: through the software batch they are copied into the
+planes after a flush (``PLANE_COPY``), otherwise queued in the batch as fragments.
 
 Rectangles and the window.  IRIS GL leaves pixels outside the window undefined
 (lrectread(3G), rectcopy(3G)); vgxsim reads them as 0 and never writes them.  The
@@ -43,6 +44,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from vgxsim import GL
+from vgxsim.batch import CommandBatch
 
 from ._core import (
     GLTypeError,
@@ -156,7 +158,8 @@ def lrectread(x1: int, y1: int, x2: int, y2: int) -> bytes:
 
 
 def _words(name: str, args: tuple, data, n: int) -> np.ndarray:
-    """The pixel array of lrectwrite: bytes of >= n little-endian words, or n ints."""
+    """The pixel array of lrectwrite: bytes of >= n little-endian words (uint32), or
+    n ints (int64, 0 .. 2**32 - 1)."""
     if isinstance(data, (bytes, bytearray, memoryview)):
         raw = bytes(data)
         if len(raw) < 4 * n:
@@ -164,7 +167,9 @@ def _words(name: str, args: tuple, data, n: int) -> np.ndarray:
                                f"rectangle needs {n} pixels = {4 * n} bytes")
         # CPython's binding did not check the size (so pixmode(PM_SIZE) kept working);
         # extra bytes are ignored here, too few are an error.
-        return np.frombuffer(raw, dtype="<u4", count=n).astype(np.int64)
+        # A read-only view (no copy of a full window's 5 MB): every use indexes or
+        # copies it.
+        return np.frombuffer(raw, dtype="<u4", count=n)
     if isinstance(data, np.ndarray) or (isinstance(data, Sequence) and not isinstance(
             data, str)):
         arr = as_array(name, args, "data", data)
@@ -181,6 +186,12 @@ def _words(name: str, args: tuple, data, n: int) -> np.ndarray:
                       f"or a sequence of ints, not {type(data).__name__}")
 
 
+#: Fast path switch: a rectangle written through the software batch is copied into
+#: the planes directly instead of being queued as one fragment per pixel.  Off, every
+#: write takes the fragment path; the planes are the same (tests/gl/test_readback.py).
+PLANE_COPY = True
+
+
 def _write_pixels(ctx, x0: int, y0: int, words: np.ndarray, valid: np.ndarray) -> None:
     """Queue pixel writes with lower-left corner (x0, y0): words (h, w) packed.
 
@@ -188,19 +199,59 @@ def _write_pixels(ctx, x0: int, y0: int, words: np.ndarray, valid: np.ndarray) -
     test) but go through the viewport, the screen mask (scrmask(3G): "pixel write and
     pixel copy commands" are masked) and the colour write mask, to the draw buffers.
     """
-    h, w = words.shape
+    rs = ctx.raster.clear_state()
+    batch = ctx.batch
+    if PLANE_COPY and type(batch) is CommandBatch and valid.all():
+        _copy_into_planes(batch, rs, x0, y0, words)
+        return
     ys, xs = np.nonzero(valid)
     if ys.size == 0:
         return
     xy = np.stack([xs.astype(np.int64) + x0, ys.astype(np.int64) + y0], axis=1)
-    rs = ctx.raster.clear_state()
     x_lo, x_hi, y_lo, y_hi = rs.scissor
     inside = (xy[:, 0] >= x_lo) & (xy[:, 0] <= x_hi) & (xy[:, 1] >= y_lo) & (xy[:, 1] <= y_hi)
     if not inside.any():
         return
     xy = np.ascontiguousarray(xy[inside])
     rgba = np.ascontiguousarray(words[ys, xs][inside].astype(np.int64) & 0xFFFFFFFF)
-    ctx.batch.add_fragments(xy, np.zeros(xy.shape[0], np.int64), rgba, rs)
+    batch.add_fragments(xy, np.zeros(xy.shape[0], np.int64), rgba, rs)
+
+
+def _copy_into_planes(batch: CommandBatch, rs, x0: int, y0: int, words: np.ndarray) -> None:
+    """What the fragment path does with a rectangle, as array copies.
+
+    The clear state ``rs`` has no z, stencil or alpha test, blendfunction(BF_ONE,
+    BF_ZERO) and logicop LO_SRC, so each fragment the kernels would write stores
+    ``(old & ~wmpack) | (word & wmpack)`` in each draw buffer, inside the raster
+    rectangle (viewport and screen mask); a single-buffered window draws its one
+    buffer for either.  The batch is flushed first so that the write lands after
+    everything queued before it, as a queued fragment run would.
+    """
+    fb = batch.fb
+    h, w = words.shape
+    x_lo, x_hi, y_lo, y_hi = rs.scissor
+    xa, xb = max(x0, x_lo), min(x0 + w - 1, x_hi)
+    ya, yb = max(y0, y_lo), min(y0 + h - 1, y_hi)
+    wm = rs.wmpack & 0xFFFFFFFF
+    planes = []
+    if fb.back is None:
+        if rs.draw_front or rs.draw_back:
+            planes.append(fb.front)
+    else:
+        planes += [fb.back] if rs.draw_back else []
+        planes += [fb.front] if rs.draw_front else []
+    if xa > xb or ya > yb or wm == 0 or not planes:
+        return
+    batch.flush()
+    src = words[ya - y0:yb - y0 + 1, xa - x0:xb - x0 + 1]
+    if src.dtype != np.uint32:  # wraps modulo 2**32, as the fragment path masks
+        src = src.astype(np.uint32)
+    for plane in planes:
+        dst = plane[ya:yb + 1, xa:xb + 1]
+        if wm == 0xFFFFFFFF:
+            dst[...] = src
+        else:
+            dst[...] = (dst & np.uint32(~wm & 0xFFFFFFFF)) | (src & np.uint32(wm))
 
 
 @gl_function(record=False)

@@ -222,7 +222,7 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
            display_objects: bool = True, signs: str = "screen",
            on_soft_frame: Callable[[int, np.ndarray], None] | None = None,
            technique=None, technique_options: dict | None = None,
-           cache_volumes: bool = True) -> Frame:
+           cache_volumes: bool = True, share_ambient: bool = True) -> Frame:
     """Render one frame of the ``shadows`` program in a window of its own.
 
     Parameters
@@ -264,6 +264,10 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
         Keep each light's shadow faces (and their display object) while the light
         stays put (see :class:`Shadows`); False: recompute and redraw them in
         immediate mode every frame (same pixels).
+    share_ambient : bool
+        Soft shadows: draw the ambient pass once and put its picture back for the
+        other jittered frames where that gives the same pixels
+        (:func:`vgxsim.shadow.program.accumulate`); False: draw it every frame.
 
     Returns
     -------
@@ -280,7 +284,7 @@ def render(scene: Scene | None = None, *, mode: str = "shadows",
                          display_objects=display_objects, signs=signs,
                          on_soft_frame=on_soft_frame, technique=technique,
                          technique_options=technique_options,
-                         cache_volumes=cache_volumes)[0]
+                         cache_volumes=cache_volumes, share_ambient=share_ambient)[0]
 
 
 def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
@@ -288,7 +292,7 @@ def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
                   subpixel: bool, display_objects: bool, signs: str,
                   on_soft_frame: Callable[[int, np.ndarray], None] | None,
                   technique=None, technique_options: dict | None = None,
-                  cache_volumes: bool = True) -> list[Frame]:
+                  cache_volumes: bool = True, share_ambient: bool = True) -> list[Frame]:
     """One window, one program set-up, one frame per camera (display objects made once)."""
     from vgxsim.gl import (
         TRUE,
@@ -343,7 +347,8 @@ def _render_views(scene: Scene, cameras: Sequence[Camera], *, mode: str,
                 if on_soft_frame is not None:
                     def callback(n: int) -> None:
                         on_soft_frame(n, read_pixels("back")[::-1].copy())
-                accumulate(prog, random_offsets(scene, frames, seed), callback)
+                accumulate(prog, random_offsets(scene, frames, seed), callback,
+                           share_ambient=share_ambient)
             else:
                 prog.DrawFrame()
             swapbuffers()
@@ -384,7 +389,7 @@ def render_spin(scene: Scene | None, frames: int, **kw) -> list[np.ndarray]:
     opts = dict(mode="shadows", size=(640, 512), light=0, soft=0, seed=1991,
                 edges="silhouette", subpixel=False, display_objects=True, signs="screen",
                 on_soft_frame=None, technique=None, technique_options=None,
-                cache_volumes=True)
+                cache_volumes=True, share_ambient=True)
     opts.update(kw)
     cams = [orbit(scene.camera, rotate=(360.0 * k / frames, 0.0)) for k in range(frames)]
     with warnings.catch_warnings():

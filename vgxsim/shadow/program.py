@@ -177,6 +177,9 @@ class Shadows:
         self._volumes: dict[int, tuple] = {}
         self._face_objects: dict[int, tuple] = {}
         self.texture: list[int] = []  # per object: texdef2d index, 0 for none
+        # accumulate()'s shared ambient pass: keep the colour after it, or restore it
+        self.keep_ambient = False
+        self.ambient_image: bytes | None = None
 
     # -- set-up (elided in the article: "/* Set up. */ . . .") -------------------------
     def config(self, accumulate: bool = False) -> None:
@@ -438,15 +441,22 @@ class Shadows:
         nLights, light, DrawObjects = self.nLights, self.light, self.DrawObjects
         MYZERO = self.MYZERO                          # (the article's constant; see config)
         # /* Draw scene w/ ambient light, setting z-buffer. */
-        for i in range(nLights):                      # /* Turn on all the lights for */
-            lmbind(LIGHT0+i, light[i].index)          # /* ambient light value calculation. */
-        zwritemask(0xffffffff)                        # /* We do want to set z values, */
-        czclear(0x00000000, getgdesc(GD_ZMAX))        # /* using the full z range. */
-        blendfunction(BF_ONE, BF_ZERO)                # /* No alpha blending. */
-        DrawObjects(matl_emitambient)                 # /* Draw all objects using only ambient */
+        if self.ambient_image is None:                # (not in the article: see accumulate)
+            for i in range(nLights):                  # /* Turn on all the lights for */
+                lmbind(LIGHT0+i, light[i].index)      # /* ambient light value calculation. */
+            zwritemask(0xffffffff)                    # /* We do want to set z values, */
+            czclear(0x00000000, getgdesc(GD_ZMAX))    # /* using the full z range. */
+            blendfunction(BF_ONE, BF_ZERO)            # /* No alpha blending. */
+            DrawObjects(matl_emitambient)             # /* Draw all objects using only ambient */
                                                       # /* and emitted material components. */
-        for i in range(nLights):                      # /* Turn off all the lights when done. */
-            lmbind(LIGHT0+i, 0)
+            for i in range(nLights):                  # /* Turn off all the lights when done. */
+                lmbind(LIGHT0+i, 0)
+            if self.keep_ambient:                     # (not in the article: accumulate()'s
+                w, h = getsize()                      #  first frame keeps the picture...)
+                self.ambient_image = lrectread(0, 0, w - 1, h - 1)
+        else:                                         # (...and its later frames put it back;
+            w, h = getsize()                          #  z is still the first pass's)
+            lrectwrite(0, 0, w - 1, h - 1, self.ambient_image)
         # /* Accumulate effects of each light in the scene in turn. */
         for i in range(nLights):
             # /* Draw faces of shadow volumes, setting stencil planes. */
@@ -650,8 +660,28 @@ def jittered_lights(scene: Scene, offsets: np.ndarray) -> Scene:
     return replace(scene, lights=lights)
 
 
+def ambient_pass_shareable(prog: Shadows) -> bool:
+    """Whether the jittered frames of :func:`accumulate` may share the first frame's
+    ambient pass.
+
+    The pass's colour is emission + ambient terms, and a light's ambient term depends
+    on where the light is only through attenuation and a spot cone (lmdef(3G)); with
+    neither, moving the lights leaves every pixel of it as it was.  Its z is the
+    nearest surface at each pixel, and no later pass of the frame changes it (the
+    shadow faces are drawn with ``zwritemask(0x0)``; the lit passes draw the same
+    polygons under ZF_LEQUAL, so a z they write equals the one there), so the next
+    frame starts on the right z without a clear.  Only the 1991 code's 'shadows'
+    mode, without the z-reset variants.
+    """
+    sc = prog.scene
+    return (prog.mode == "shadows" and prog.technique is None and not prog.faithful
+            and not prog.effective_zclear and tuple(sc.lmodel.attenuation) == (1.0, 0.0)
+            and all(lt.spot is None or lt.spot[1] >= 180.0 for lt in sc.lights))
+
+
 def accumulate(prog: Shadows, offsets: np.ndarray,
-               on_frame: Callable[[int], None] | None = None) -> None:
+               on_frame: Callable[[int], None] | None = None,
+               share_ambient: bool = True) -> None:
     """Draw one jittered frame per row of ``offsets`` and leave their average in the
     colour buffer (article, Figure 6: "drawing a shadowed scene several times, each
     time moving the light source a small amount and accumulating the images").
@@ -669,12 +699,22 @@ def accumulate(prog: Shadows, offsets: np.ndarray,
     on_frame : callable, optional
         ``on_frame(n)`` after the average of the first ``n`` frames was returned to
         the back buffer (the README's "intermediate results will be displayed").
+    share_ambient : bool
+        Not the article: where :func:`ambient_pass_shareable` allows it, draw the
+        ambient pass for the first frame only, keep its picture (``lrectread``) and
+        put it back (``lrectwrite``) instead of clearing and drawing it again; the
+        same pixels (tested), one pass fewer per jittered frame (``lrectwrite``
+        replaces the whole colour buffer, so the running averages ``on_frame`` has
+        ``AC_RETURN`` write there between frames are gone too).  False: every frame
+        draws the whole code segment.
     """
     base = prog.scene
+    share = share_ambient and ambient_pass_shareable(prog)
     try:
         for k, off in enumerate(offsets):
             prog.scene = jittered_lights(base, off)
             prog.define_lights()  # lmdef the moved lights; lmbind transforms them
+            prog.keep_ambient = share and k == 0
             prog.DrawFrame()
             acbuf(AC_CLEAR_ACCUMULATE if k == 0 else AC_ACCUMULATE, 1.0)
             if on_frame is not None:
@@ -683,3 +723,5 @@ def accumulate(prog: Shadows, offsets: np.ndarray,
         acbuf(AC_RETURN, 1.0 / len(offsets))
     finally:
         prog.scene = base
+        prog.keep_ambient = False
+        prog.ambient_image = None
