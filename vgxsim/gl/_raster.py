@@ -429,16 +429,22 @@ def lsrepeat(factor: int) -> None:
     ctx.raster.set(lsrepeat=_in_range("lsrepeat", (factor,), "factor", factor, 1, 255))
 
 
+def _set_line_flag(name: str, b: int) -> None:
+    """Set the window's line flag ``name`` (resetls, lsbackup) from a boolean argument;
+    the flag is part of the draw state, so a new record is made per value."""
+    args = (b,)
+    ctx = current(name, args)
+    setattr(ctx, name, bool(as_int(name, args, "b", b)))
+    ctx.vertex_serial += 1
+
+
 @gl_function()
 def resetls(b: int) -> None:
     """resetls(FALSE): the line-style pattern continues from one line to the next
     instead of restarting at each bgnline, bgnclosedline and move (resetls(3G);
     TRUE, the default, restarts it).  The position is counted per pixel drawn
     (docs/numeric_model.md s. 5)."""
-    args = (b,)
-    ctx = current("resetls", args)
-    ctx.resetls = bool(as_int("resetls", args, "b", b))
-    ctx.vertex_serial += 1  # part of the draw state (a record per value)
+    _set_line_flag("resetls", b)
 
 
 @gl_function(record=False)
@@ -454,10 +460,7 @@ def lsbackup(b: int) -> None:
     linestyle to guarantee that the last two pixels in a line are colored"; FALSE, the
     default, applies the pattern to every pixel).  A line is one bgnline or
     bgnclosedline polyline, or one draw (docs/numeric_model.md s. 5)."""
-    args = (b,)
-    ctx = current("lsbackup", args)
-    ctx.lsbackup = bool(as_int("lsbackup", args, "b", b))
-    ctx.vertex_serial += 1  # part of the draw state (a record per value)
+    _set_line_flag("lsbackup", b)
 
 
 @gl_function(record=False)

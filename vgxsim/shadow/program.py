@@ -375,11 +375,9 @@ class Shadows:
         without ``cache_volumes``."""
         if not self.cache_volumes:
             return None
-        key = self._face_key(i)
-        hit = self._face_objects.get(i)
-        if hit is not None and hit[0] == key:
-            return hit[1]
-        self._drop_face_object(i)
+        name, key = self._current_face_object(i)
+        if name is not None:
+            return name
         name = genobj()
         makeobj(name)
         self.draw_quads(faces)
@@ -393,15 +391,23 @@ class Shadows:
         that already holds the loop's calls for light ``i``'s current faces."""
         if not self.cache_volumes:
             return None
-        key = self._face_key(i)
-        hit = self._face_objects.get(i)
-        if hit is not None and hit[0] == key:
-            return hit[1]
-        self._drop_face_object(i)
+        name, key = self._current_face_object(i)
+        if name is not None:
+            return name
         name = genobj()
         makeobj(name)
         self._face_objects[i] = (key, name)
         return None
+
+    def _current_face_object(self, i: int) -> tuple[int | None, tuple]:
+        """(object, key): the display object that holds light ``i``'s faces for the
+        current key, or None for it after deleting an object made for another key."""
+        key = self._face_key(i)
+        hit = self._face_objects.get(i)
+        if hit is not None and hit[0] == key:
+            return hit[1], key
+        self._drop_face_object(i)
+        return None, key
 
     def _close_face_object(self, i: int, recorded: int | None) -> None:
         """After the edge loop: close the object it was recorded into and draw it, or
