@@ -452,7 +452,18 @@ def build_bvh(tris4: np.ndarray, usable: np.ndarray | None = None, *, leaf_size:
     ref, lo, hi = split_references(tris4, np.ascontiguousarray(usable, dtype=np.bool_),
                                    float(max_extent), np.asarray(region[0], np.float64),
                                    np.asarray(region[1], np.float64), int(max_pieces))
-    return BVH(*build_arrays(tris4, ref, lo, hi, int(leaf_size), bool(sah)))
+    nodes, ordered, index = build_arrays(tris4, ref, lo, hi, int(leaf_size), bool(sah))
+    return BVH(_cache_line_aligned(nodes), ordered, index)
+
+
+def _cache_line_aligned(a: np.ndarray) -> np.ndarray:
+    """A copy of ``a`` whose data starts on a 64-byte boundary, so that each 64-byte
+    node record of a BVH lies in one cache line (numpy aligns to 16 bytes only)."""
+    buf = np.empty(a.nbytes + 64, np.uint8)
+    skip = (-buf.ctypes.data) % 64
+    out = buf[skip:skip + a.nbytes].view(a.dtype).reshape(a.shape)
+    out[...] = a
+    return out
 
 
 def scene_bvh(tris4: np.ndarray, keep: np.ndarray | None = None, *, sah: bool = True,
