@@ -47,6 +47,7 @@ from vgxsim.shadow.raycast import (
     raycast,
     run_bands,
     scene_bvh,
+    tile_order,
 )
 from vgxsim.shadow.scene import LightModel, make_grid_box
 
@@ -103,10 +104,11 @@ def measure(scene: Scene, w: int, h: int, rounds: int) -> dict:
     idx = np.empty(n, np.int64)
     t = np.empty(n)
     win = no_window()
+    order = tile_order(w, h)
     for sah in (True, False):
         for th in (1, 2):
             s = median(lambda th=th, sah=sah: run_bands(closest_hits, n, th, trees[sah], win, o,
-                                                         d, 0.0, 1.0, (idx, t)), rounds)
+                                                         d, 0.0, 1.0, order, (idx, t)), rounds)
             key = f"primary_{'sah' if sah else 'median'}_{th}t"
             res[f"{key}_Mrays_s"] = n / s / 1e6
             res[f"{key}_Mrays_cpu_s"] = n / CPU["s"] / 1e6
@@ -122,7 +124,7 @@ def measure(scene: Scene, w: int, h: int, rounds: int) -> dict:
     for th in (1, 2):
         s = median(lambda th=th: run_bands(shadow_segments, n, th, ctree, tri_obj,
                                            len(scene.objects), lw, pts, idx, hit, lights,
-                                           100.0, 1e-6, False, outs), rounds)
+                                           100.0, 1e-6, False, order, outs), rounds)
         res[f"shadow_{th}t_Mrays_s"] = nseg / s / 1e6
         res[f"shadow_{th}t_Mrays_cpu_s"] = nseg / CPU["s"] / 1e6
         f = median(lambda th=th: raycast(scene, w, h, threads=th), max(1, rounds // 2))

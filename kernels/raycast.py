@@ -433,8 +433,8 @@ def _n_items(bvh):
 
 
 @jit
-def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
-    """Nearest triangle along rays ``r0 .. r1-1``.
+def closest_hits(bvh, win, origin, direction, t0, t1, order, r0, r1, out_tri, out_t):
+    """Nearest triangle along rays ``order[r0:r1]``.
 
     Parameters
     ----------
@@ -445,8 +445,12 @@ def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
         Ray ``origin + t * direction``.
     t0, t1 : float
         Closed parameter interval.
+    order : ndarray, shape (R,), int64
+        The rays in the order they are cast (a permutation of 0 .. R-1; square
+        tiles of pixels, :func:`vgxsim.shadow.raycast.tile_order`, keep successive
+        rays in the same nodes); outputs stay indexed by ray.
     r0, r1 : int
-        Rays this call handles (a worker thread's band).
+        The slice of ``order`` this call handles (a worker thread's band).
     out_tri : ndarray, shape (R,), int64
         Caller's triangle index, -1 for none (ties in t: lowest index).
     out_t : ndarray, shape (R,), float64
@@ -454,7 +458,8 @@ def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
     """
     stack = np.empty(STACK_SIZE, dtype=np.int64)
     stack_t = np.empty(STACK_SIZE)
-    for r in range(r0, r1):
+    for q in range(r0, r1):
+        r = order[q]
         k, t = _closest(bvh, win, r, stack, stack_t, origin[r, 0], origin[r, 1], origin[r, 2],
                         direction[r, 0], direction[r, 1], direction[r, 2], t0, t1)
         out_tri[r] = k
@@ -463,7 +468,7 @@ def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
 
 @jit
 def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, active,
-                    lights, far, offset, counts, r0, r1, out_blocked, out_objects,
+                    lights, far, offset, counts, order, r0, r1, out_blocked, out_objects,
                     out_layers):
     """Per point and light: is the segment to the light blocked, and by how much.
 
@@ -496,7 +501,12 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
     counts : bool
         False: only ``out_blocked``, each segment stopping at its first hit (the fast
         path); True: also the counts, from every hit.
+    order : ndarray, shape (R,), int64
+        The rays in the order they are cast (a permutation of 0 .. R-1; square
+        tiles of pixels, :func:`vgxsim.shadow.raycast.tile_order`, keep successive
+        rays in the same nodes); outputs stay indexed by ray.
     r0, r1 : int
+        The slice of ``order`` this call handles (a worker thread's band).
     out_blocked : ndarray, shape (R, L), bool
     out_objects : ndarray, shape (R, L), int64
         Distinct objects crossed.
@@ -510,7 +520,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
     win = Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
                  np.zeros(0, np.bool_))
     nl = lights.shape[0]
-    for r in range(r0, r1):
+    for q in range(r0, r1):
+        r = order[q]
         if not active[r]:
             continue
         px, py, pz = points[r, 0], points[r, 1], points[r, 2]
@@ -548,8 +559,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
 
 
 @jit
-def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end, r0, r1,
-                    out_count):
+def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end, order, r0,
+                    r1, out_count):
     """Signed count of shadow-volume faces crossed by each ray, per light.
 
     Parameters
@@ -565,14 +576,20 @@ def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end,
     origin, direction : ndarray, shape (R, 3), float64
     t_end : ndarray, shape (R,), float64
         Faces with ``0 <= t <= t_end[r]`` count.
+    order : ndarray, shape (R,), int64
+        The rays in the order they are cast (a permutation of 0 .. R-1; square
+        tiles of pixels, :func:`vgxsim.shadow.raycast.tile_order`, keep successive
+        rays in the same nodes); outputs stay indexed by ray.
     r0, r1 : int
+        The slice of ``order`` this call handles (a worker thread's band).
     out_count : ndarray, shape (R, L), int64
     """
     stack = np.empty(STACK_SIZE, dtype=np.int64)
     hits = np.empty(max(1, bvh.index.shape[0]), dtype=np.int64)
     seen = np.full(_n_items(bvh), -1, dtype=np.int64)
     nl = out_count.shape[1]
-    for r in range(r0, r1):
+    for q in range(r0, r1):
+        r = order[q]
         for li in range(nl):
             out_count[r, li] = 0
         n = _all_hits(bvh, win, r, stack, hits, seen, r, origin[r, 0], origin[r, 1],
