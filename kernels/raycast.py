@@ -129,7 +129,7 @@ def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
 Window = namedtuple("Window", ["width", "fx", "fy", "exact"])
 
 
-@inline
+@inline_ir
 def _edge_covers(xi, yi, xj, yj, px, py):
     """Rasterizer edge test: E > 0, or E == 0 on an inclusive (left/bottom) edge."""
     e = (xj - xi) * (py - yi) - (yj - yi) * (px - xi)
@@ -140,7 +140,7 @@ def _edge_covers(xi, yi, xj, yj, px, py):
     return (yj - yi) < 0 or ((yj == yi) and (xj > xi))
 
 
-@inline
+@inline_ir
 def _window_covers(win, idx, r):
     """The rasterizer's coverage of pixel r by triangle idx (exact integers)."""
     px = (r % win.width) * 256
@@ -157,7 +157,7 @@ def _window_covers(win, idx, r):
             and _edge_covers(x2, y2, x0, y0, px, py))
 
 
-@inline
+@inline_ir
 def _plane_t(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     """(ok, t) where the ray meets triangle k's plane (ok False if parallel)."""
     ax, ay, az, aw = _vertex(tris, k, 0, kx, ky, kz, okx, oky, okz, sx, sy, sz)
@@ -172,7 +172,7 @@ def _plane_t(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     return True, (u * az + v * bz + w * cz) / den
 
 
-@inline
+@inline_ir
 def _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     """(hit, t): window-space coverage when ``win`` covers triangle idx, else 3-D."""
     if win.width > 0 and win.exact[idx]:

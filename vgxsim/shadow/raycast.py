@@ -84,6 +84,7 @@ import numpy as np
 
 from vgxsim import threads as _threads
 from vgxsim.geometry.pipeline import GUARD_PIXELS, to_clip
+from vgxsim.geometry.transform import apply
 from vgxsim.kernels.bvh import BVH, build_arrays, split_references
 from vgxsim.kernels.clip import (
     COORD_LIMIT,
@@ -170,8 +171,8 @@ def pixel_rays(scene: Scene, width: int, height: int) -> tuple[np.ndarray, np.nd
     ones = np.ones_like(xx)
 
     def unproject(z: float) -> np.ndarray:
-        clip = np.stack([xx, yy, z * ones, ones], axis=-1)
-        obj = clip @ inv
+        clip = np.stack([xx, yy, z * ones, ones], axis=-1).reshape(-1, 4)
+        obj = apply(clip, inv).reshape(height, width, 4)  # no BLAS threads (transform.apply)
         return obj[..., :3] / obj[..., 3:4]
 
     near = unproject(-1.0)
@@ -329,7 +330,7 @@ def snap_to_window(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
     ndarray, shape (T, 3, 4), float64
     """
     v = tris4.reshape(-1, 4)
-    clip = v @ mvp
+    clip = to_clip(v, mvp)  # the rasterizer's own transform, rounding included
     x, y, z, w = clip[:, 0], clip[:, 1], clip[:, 2], clip[:, 3]
     fin = v[:, 3] == 1.0
     hx, hy = width / 2.0, height / 2.0
@@ -345,7 +346,7 @@ def snap_to_window(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
         wk = w[ok]
         snapped = np.stack([((xf / ONE + 0.5) / hx - 1.0) * wk,
                             ((yf / ONE + 0.5) / hy - 1.0) * wk, z[ok], wk], axis=1)
-        snapped = snapped @ np.linalg.inv(mvp)
+        snapped = apply(snapped, np.linalg.inv(mvp))
         out[ok, :3] = snapped[:, :3] / snapped[:, 3:4]
     return out.reshape(tris4.shape)
 
@@ -386,7 +387,8 @@ def _rasterized(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
                              -1.0, 1.0, bool(subpixel))
     w = out_v[:, 3]
     snapped = np.stack([((xf / ONE + 0.5) / hx - 1.0) * w, ((yf / ONE + 0.5) / hy - 1.0) * w,
-                        out_v[:, 2], w], axis=1) @ np.linalg.inv(mvp)
+                        out_v[:, 2], w], axis=1)
+    snapped = apply(snapped, np.linalg.inv(mvp))
     at_inf = np.zeros(len(out_v), bool)
     at_inf[:n] = v[:, 3] == 0.0
     with np.errstate(divide="ignore", invalid="ignore"):
