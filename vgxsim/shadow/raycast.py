@@ -22,7 +22,12 @@ BVH, :mod:`vgxsim.kernels.bvh`):
   world units of it (:func:`segment_scales`: ``eps`` times the scene's size plus
   1e-13 times its largest coordinate, so a scene moved far from the origin keeps
   its shadows; 2e-6 units for the default scene) -- the definition of a hard
-  shadow (article: "The volume of space behind the triangle ... is in shadow").
+  shadow (article: "The volume of space behind the triangle ... is in shadow"),
+  and P's own caster triangle does not have the light on the side the eye sees it
+  from (:func:`own_side_shadowed`: a sheet seen from the side facing away from the
+  light is behind itself, in the volume of its own triangle; this decides points
+  on open casters, the inside of the teapot and its walls seen where light comes
+  in through the lid gap, where no other triangle is met).
   Point and spot lights use their position (a spot's cone limits its light, not its
   shadow); a directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a
   direction toward the light) uses ``L = P + far * unit(direction)``, ``far``
@@ -115,7 +120,8 @@ class RayCastResult:
         Ray parameter of the hit, 0 at the near plane and 1 at the far plane (inf for
         background).
     lit : ndarray, shape (H, W, L), bool
-        Per light: the segment from the hit point to the light meets no caster.
+        Per light: the segment from the hit point to the light meets no caster, and
+        the light is on the visible side of the hit point's own caster triangle.
         False on background pixels.
     occluders : ndarray, shape (H, W, L), int64
         Per light: number of caster objects the segment meets (0 when ``counts``
@@ -580,6 +586,51 @@ def _light_facing(tris4: np.ndarray, light: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", n, to_light) > 0.0
 
 
+def own_side_shadowed(tris4: np.ndarray, tri: np.ndarray, direction: np.ndarray,
+                      lights: np.ndarray) -> np.ndarray:
+    """Whether each point's own triangle lies between the side the eye sees and the light.
+
+    The eye ray meets triangle ``tri[r]`` from the side ``-direction[r]`` points to;
+    that side is lit only if the light is on it too:  with ``N = (v1 - v0) x (v2 -
+    v0)``, the point is shadowed by its own triangle iff ``(N . direction) *
+    (N . (l - lw v0)) > 0`` (``N . l`` for a directional light, the facing rule of
+    :meth:`vgxsim.shadow.scene.Polyhedron.facing`).  This is the volume of the
+    triangle itself (shadow_literature.md 1.1 and 1.3: the region behind each
+    caster polygon is in shadow, and a point's count is the number of caster
+    surfaces between it and the light, H5): the eye ray reaching P from behind the
+    triangle comes through that volume, which is what a stencil counts.  On a
+    closed caster it changes nothing away from silhouettes (the segment meets
+    another triangle anyway); on an open one it decides the inside and the far side
+    of a sheet.  A light exactly in the plane (0) does not shadow (H4).
+
+    Parameters
+    ----------
+    tris4 : ndarray, shape (T, 3, 4), float64
+    tri : ndarray, shape (R,), int64
+        Triangle of each point, -1 for none (never shadowed).
+    direction : ndarray, shape (R, 3), float64
+        The eye rays.
+    lights : ndarray, shape (L, 4), float64
+
+    Returns
+    -------
+    ndarray, shape (R, L), bool
+    """
+    out = np.zeros((len(tri), len(lights)), bool)
+    on = tri >= 0
+    if not on.any():
+        return out
+    t = tris4[tri[on]]
+    a, b, c = t[:, 0, :3], t[:, 1, :3], t[:, 2, :3]
+    n = np.cross(b - a, c - a)
+    seen = np.einsum("ij,ij->i", n, direction[on])
+    for li, lp in enumerate(lights):
+        to_light = lp[:3][None, :] - lp[3] * a
+        side = np.einsum("ij,ij->i", n, to_light)
+        out[on, li] = ((seen > 0.0) & (side > 0.0)) | ((seen < 0.0) & (side < 0.0))
+    return out
+
+
 def _scene_faces(scene: Scene, edges: str) -> list[tuple[np.ndarray, np.ndarray]]:
     """Per light: the shadow-face triangles the renderer draws and their +-1 signs."""
     out = []
@@ -698,6 +749,9 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     run_bands(shadow_segments, n, nthreads, caster_tree, tri_obj, len(scene.objects), layer_w,
               pts, tri_idx, hit, lights, far, offset, bool(counts), order,
               (blocked, occl, layers))
+    own = np.where(hit, tri_idx, -1)
+    own[hit] = np.where(caster[tri_idx[hit]], tri_idx[hit], -1)
+    blocked |= own_side_shadowed(tris4, own, d, lights)
     eye_b = np.zeros((1, nl), bool)
     eye_o = np.zeros((1, nl), np.int64)
     eye_l = np.zeros((1, nl), np.int64)
