@@ -129,7 +129,7 @@ def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
 Window = namedtuple("Window", ["width", "fx", "fy", "exact"])
 
 
-@inline_ir
+@inline
 def _edge_covers(xi, yi, xj, yj, px, py):
     """Rasterizer edge test: E > 0, or E == 0 on an inclusive (left/bottom) edge."""
     e = (xj - xi) * (py - yi) - (yj - yi) * (px - xi)
@@ -140,7 +140,7 @@ def _edge_covers(xi, yi, xj, yj, px, py):
     return (yj - yi) < 0 or ((yj == yi) and (xj > xi))
 
 
-@inline_ir
+@inline
 def _window_covers(win, idx, r):
     """The rasterizer's coverage of pixel r by triangle idx (exact integers)."""
     px = (r % win.width) * 256
@@ -157,7 +157,7 @@ def _window_covers(win, idx, r):
             and _edge_covers(x2, y2, x0, y0, px, py))
 
 
-@inline_ir
+@inline
 def _plane_t(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     """(ok, t) where the ray meets triangle k's plane (ok False if parallel)."""
     ax, ay, az, aw = _vertex(tris, k, 0, kx, ky, kz, okx, oky, okz, sx, sy, sz)
@@ -172,7 +172,7 @@ def _plane_t(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     return True, (u * az + v * bz + w * cz) / den
 
 
-@inline_ir
+@inline
 def _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     """(hit, t): window-space coverage when ``win`` covers triangle idx, else 3-D."""
     if win.width > 0 and win.exact[idx]:
@@ -190,8 +190,8 @@ def _box(nodes, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
     Each slab's interval is widened by a relative 1e-15 (more than the rounding of
     ``(lo - o) * (1/d)``) and a zero direction component is a containment test, so
     the test never culls a ray that meets the box; infinite bounds are fine.  The
-    general case: :func:`_box_signed` is the same test for rays with no zero
-    component.
+    general case, for rays with a zero component; :func:`_box_signed` is the same
+    test for the others.
     """
     tn = -np.inf
     tf = np.inf
@@ -297,10 +297,8 @@ def _closest(bvh, win, r, stack, stack_t, ox, oy, oz, dx, dy, dz, t0, t1):
     oky = oz if ky == 2 else (oy if ky == 1 else ox)
     okz = oz if kz == 2 else (oy if kz == 1 else ox)
     ix, iy, iz, nx, ny, nz, signed = _ray_boxes(dx, dy, dz)
-    ok, _ = _either_box(nodes, 0, signed, ox, oy, oz, dx, dy, dz, ix, iy, iz, nx, ny, nz,
-                        t0, bt)
-    if not ok:
-        return best, np.inf
+    # the root's box is not tested, only its children's (a ray missing it misses
+    # them): two inlined box tests per traversal instead of three
     windowed = win.width > 0
     node = 0
     sp = 0
@@ -368,10 +366,6 @@ def _all_hits(bvh, win, r, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0,
     oky = oz if ky == 2 else (oy if ky == 1 else ox)
     okz = oz if kz == 2 else (oy if kz == 1 else ox)
     ix, iy, iz, nx, ny, nz, signed = _ray_boxes(dx, dy, dz)
-    ok, _ = _either_box(nodes, 0, signed, ox, oy, oz, dx, dy, dz, ix, iy, iz, nx, ny, nz,
-                        t0, t1)
-    if not ok:
-        return 0
     windowed = win.width > 0
     n = 0
     node = 0
