@@ -2,8 +2,10 @@
 
     python bench/raycast.py [--quick] [--rounds N] [--json FILE]
 
-Scenes: the default three-cube scene at 1280 x 1024, and 20 icospheres (5120
-triangles each, 102 k triangles with the floor) over a floor, two point lights.
+Scenes: the default three-cube scene at 1280 x 1024, the shipped dense scene
+(vgxsim/data/scenes/dense.scn: a torus of 51,200 triangles over a floor, the
+issue's 50 k-triangle scene), and 20 icospheres (5120 triangles each, 102 k
+triangles with the floor) over a floor, two point lights.
 Measured side by side in one run, medians of ``--rounds``:
 
 * BVH build time, SAH against object-median splits, and primary-ray speed with each;
@@ -25,6 +27,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import os
 import time
 
 import numpy as np
@@ -39,6 +42,7 @@ from vgxsim.shadow import (
     default_scene,
     polyhedron_from_polygons,
 )
+from vgxsim.shadow.api import load_scene
 from vgxsim.shadow.raycast import (
     homogeneous,
     light_position,
@@ -47,6 +51,7 @@ from vgxsim.shadow.raycast import (
     raycast,
     run_bands,
     scene_bvh,
+    tile_order,
 )
 from vgxsim.shadow.scene import LightModel, make_grid_box
 
@@ -103,10 +108,11 @@ def measure(scene: Scene, w: int, h: int, rounds: int) -> dict:
     idx = np.empty(n, np.int64)
     t = np.empty(n)
     win = no_window()
+    order = tile_order(w, h)
     for sah in (True, False):
         for th in (1, 2):
             s = median(lambda th=th, sah=sah: run_bands(closest_hits, n, th, trees[sah], win, o,
-                                                         d, 0.0, 1.0, (idx, t)), rounds)
+                                                         d, 0.0, 1.0, order, (idx, t)), rounds)
             key = f"primary_{'sah' if sah else 'median'}_{th}t"
             res[f"{key}_Mrays_s"] = n / s / 1e6
             res[f"{key}_Mrays_cpu_s"] = n / CPU["s"] / 1e6
@@ -122,7 +128,7 @@ def measure(scene: Scene, w: int, h: int, rounds: int) -> dict:
     for th in (1, 2):
         s = median(lambda th=th: run_bands(shadow_segments, n, th, ctree, tri_obj,
                                            len(scene.objects), lw, pts, idx, hit, lights,
-                                           100.0, 1e-6, False, outs), rounds)
+                                           100.0, 1e-6, False, order, outs), rounds)
         res[f"shadow_{th}t_Mrays_s"] = nseg / s / 1e6
         res[f"shadow_{th}t_Mrays_cpu_s"] = nseg / CPU["s"] / 1e6
         f = median(lambda th=th: raycast(scene, w, h, threads=th), max(1, rounds // 2))
@@ -170,12 +176,21 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="320 x 256, fewer rounds")
     ap.add_argument("--rounds", type=int, default=None)
     ap.add_argument("--json", help="write the figures to this file")
+    ap.add_argument("--scenes", nargs="+",
+                    choices=["three cubes", "dense torus", "20 icospheres"],
+                    help="measure only these (default: all)")
     args = ap.parse_args(argv)
     w, h = (320, 256) if args.quick else (1280, 1024)
     rounds = args.rounds or (2 if args.quick else 3)
     results = {}
-    for name, sc in (("three cubes", default_scene()), ("20 icospheres", spheres_scene())):
-        results[name] = measure(sc, w, h, rounds)
+    scenes = {"three cubes": default_scene, "dense torus": lambda: load_scene("dense"),
+              "20 icospheres": spheres_scene}
+    load = [os.getloadavg()[0]]
+    for name in args.scenes or scenes:
+        results[name] = measure(scenes[name](), w, h, rounds)
+    load.append(os.getloadavg()[0])
+    for r in results.values():
+        r["load_average_1min"] = f"{load[0]:.1f} -> {load[1]:.1f}"
     keys = sorted({k for r in results.values() for k in r})
     print(f"| {w} x {h} | " + " | ".join(results) + " |")
     print("|---" * (len(results) + 1) + "|")

@@ -5,12 +5,15 @@ against scenes of up to ~10^5 triangles; testing every triangle is the numpy
 version's cost (15 s at 1280x1024 for three cubes).  A BVH makes the cost per ray
 logarithmic.  Layout (flattened, depth-first):
 
-* node ``i`` has the box ``lo[i], hi[i]``;
-* a leaf has ``count[i] > 0`` and owns triangles ``first[i] .. first[i]+count[i]-1``
-  of the reordered triangle array ``tris`` (``index`` maps them back to the
-  caller's numbering);
-* an interior node has ``count[i] == 0``; its children are ``first[i]`` and
-  ``first[i] + 1``.
+* node ``i`` is the record ``nodes[i]`` of 8 float64 (64 bytes, one cache line:
+  the traversal reads one line per node, and two siblings are adjacent):
+  ``lo x, y, z, hi x, y, z, first, count`` (the two integers stored exactly as
+  floats, being far below 2**53);
+* a leaf has ``count > 0`` and owns triangles ``first .. first+count-1`` of the
+  reordered triangle array ``tris`` (``index`` maps them back to the caller's
+  numbering);
+* an interior node has ``count == 0``; its children are ``first`` and
+  ``first + 1``.
 
 Vertices are homogeneous, ``(x, y, z, w)`` with ``w`` exactly 1 (a point) or 0 (a
 direction: the vertex is at infinity, as the extruded vertices of infinite shadow
@@ -32,10 +35,13 @@ import numpy as np
 
 from .options import jit
 
-#: The tree's arrays (see the module docstring).  ``lo, hi``: (N, 3) float64;
-#: ``first, count``: (N,) int64; ``tris``: (T, 3, 4) float64 in tree order;
-#: ``index``: (T,) int64, the caller's index of each triangle of ``tris``.
-BVH = namedtuple("BVH", ["lo", "hi", "first", "count", "tris", "index"])
+#: The tree's arrays (see the module docstring).  ``nodes``: (N, 8) float64 node
+#: records; ``tris``: (T, 3, 4) float64 in tree order; ``index``: (T,) int64, the
+#: caller's index of each triangle of ``tris``.
+BVH = namedtuple("BVH", ["nodes", "tris", "index"])
+
+#: Columns of a node record.
+LO, HI, FIRST, COUNT = 0, 3, 6, 7
 
 #: Deepest level the builder creates (deeper nodes become leaves), so traversal
 #: stacks of STACK_SIZE entries never overflow (a stack holds at most depth + 1).
@@ -131,7 +137,7 @@ def build_arrays(tris, ref_tri, blo, bhi, leaf_size, sah):
 
     Returns
     -------
-    lo, hi, first, count, tris, index
+    nodes, tris, index
         The fields of :data:`BVH` (``tris`` holds one copy of the triangle per
         reference); no nodes at all when there is no reference.
     """
@@ -317,14 +323,17 @@ def build_arrays(tris, ref_tri, blo, bhi, leaf_size, sah):
                 ordered[q, j, c] = tris[index[q], j, c]
     # pad every box outward by a relative 1e-12 so that float rounding in the slab
     # test never culls a ray that meets a triangle on the box boundary
+    nodes = np.empty((nnodes, 8))
     for k in range(nnodes):
         for c in range(3):
             a = nlo[k, c]
             b = nhi[k, c]
             pad = 1e-12 * (abs(a) + abs(b)) if np.isfinite(a) and np.isfinite(b) else 0.0
-            nlo[k, c] = a - pad
-            nhi[k, c] = b + pad
-    return nlo[:nnodes], nhi[:nnodes], first[:nnodes], count[:nnodes], ordered, index
+            nodes[k, LO + c] = a - pad
+            nodes[k, HI + c] = b + pad
+        nodes[k, FIRST] = first[k]
+        nodes[k, COUNT] = count[k]
+    return nodes, ordered, index
 
 
 @jit

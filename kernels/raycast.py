@@ -40,8 +40,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from .bvh import STACK_SIZE
-from .options import inline, jit
+from .bvh import COUNT, FIRST, HI, LO, STACK_SIZE
+from .options import inline, inline_ir, jit
 
 
 @inline
@@ -83,7 +83,7 @@ def _edge_sign(e, px, py, pw, qx, qy, qw):
     return 0
 
 
-@inline
+@inline_ir
 def _vertex(tris, k, j, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     w = tris[k, j, 3]
     x = tris[k, j, kx] - okx * w
@@ -92,7 +92,7 @@ def _vertex(tris, k, j, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     return x - sx * z, y - sy * z, sz * z, w
 
 
-@inline
+@inline_ir
 def _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     """(hit, t, side) of the ray with triangle ``k``; side +1/-1 is its facing."""
     ax, ay, az, aw = _vertex(tris, k, 0, kx, ky, kz, okx, oky, okz, sx, sy, sz)
@@ -183,13 +183,15 @@ def _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz):
     return hit, t
 
 
-@inline
-def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
+@inline_ir
+def _box(nodes, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
     """(hit, t_enter): the ray meets the node's box within [t0, t1] (conservative).
 
     Each slab's interval is widened by a relative 1e-15 (more than the rounding of
     ``(lo - o) * (1/d)``) and a zero direction component is a containment test, so
-    the test never culls a ray that meets the box; infinite bounds are fine.
+    the test never culls a ray that meets the box; infinite bounds are fine.  The
+    general case, for rays with a zero component; :func:`_box_signed` is the same
+    test for the others.
     """
     tn = -np.inf
     tf = np.inf
@@ -200,12 +202,14 @@ def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
             o, d, inv = oy, dy, iy
         else:
             o, d, inv = oz, dz, iz
+        lo = nodes[node, LO + c]
+        hi = nodes[node, HI + c]
         if d == 0.0:
-            if o < lo[node, c] or o > hi[node, c]:
+            if o < lo or o > hi:
                 return False, tn
             continue
-        a = (lo[node, c] - o) * inv
-        b = (hi[node, c] - o) * inv
+        a = (lo - o) * inv
+        b = (hi - o) * inv
         if a > b:
             a, b = b, a
         if a > tn:
@@ -223,121 +227,193 @@ def _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1):
     return tn <= tf, tn
 
 
+@inline_ir
+def _box_signed(nodes, node, ox, oy, oz, ix, iy, iz, nx, ny, nz, t0, t1):
+    """:func:`_box` for a ray with every direction component non-zero and finite
+    inverses: the entry plane of each slab is chosen once per ray by the sign of the
+    component (column ``nx`` is ``lo x`` for dx > 0, ``hi x`` for dx < 0; the exit
+    plane is the other), which gives the same ``a, b`` as _box's swap, so the same
+    answer, without its branches (Williams et al. 2005, "An efficient and robust
+    ray-box intersection algorithm")."""
+    tn = (nodes[node, nx] - ox) * ix
+    a = (nodes[node, ny] - oy) * iy
+    if a > tn:
+        tn = a
+    a = (nodes[node, nz] - oz) * iz
+    if a > tn:
+        tn = a
+    tf = (nodes[node, 3 - nx] - ox) * ix
+    a = (nodes[node, 5 - ny] - oy) * iy
+    if a < tf:
+        tf = a
+    a = (nodes[node, 7 - nz] - oz) * iz
+    if a < tf:
+        tf = a
+    tn -= abs(tn) * 1e-15
+    tf += abs(tf) * 1e-15
+    if t0 > tn:
+        tn = t0
+    if t1 < tf:
+        tf = t1
+    return tn <= tf, tn
+
+
 @inline
+def _ray_boxes(dx, dy, dz):
+    """Per-ray constants of the box tests: inverses, entry columns, and whether the
+    signed test applies (every component non-zero with a finite inverse)."""
+    ix = 1.0 / dx if dx != 0.0 else 0.0
+    iy = 1.0 / dy if dy != 0.0 else 0.0
+    iz = 1.0 / dz if dz != 0.0 else 0.0
+    signed = (dx != 0.0 and dy != 0.0 and dz != 0.0 and np.isfinite(ix) and np.isfinite(iy)
+              and np.isfinite(iz))
+    nx = LO if dx > 0.0 else HI
+    ny = LO + 1 if dy > 0.0 else HI + 1
+    nz = LO + 2 if dz > 0.0 else HI + 2
+    return ix, iy, iz, nx, ny, nz, signed
+
+
+@inline_ir
+def _either_box(nodes, node, signed, ox, oy, oz, dx, dy, dz, ix, iy, iz, nx, ny, nz, t0, t1):
+    if signed:
+        return _box_signed(nodes, node, ox, oy, oz, ix, iy, iz, nx, ny, nz, t0, t1)
+    return _box(nodes, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1)
+
+
+@inline_ir
 def _closest(bvh, win, r, stack, stack_t, ox, oy, oz, dx, dy, dz, t0, t1):
     """Nearest hit with t0 <= t <= t1: (caller's triangle index or -1, t).
 
-    Ties in t go to the lowest caller index, whatever the tree's order.  Nodes wait
-    on the stack with their entry parameter and are dropped when a hit found since
-    is nearer."""
+    Ties in t go to the lowest caller index, whatever the tree's order.  The
+    traversal descends into the nearer child and leaves the other on the stack with
+    its entry parameter; a node is dropped when a hit found since is nearer."""
     best = -1
     bt = t1
-    if bvh.lo.shape[0] == 0:
+    nodes, tris, index = bvh.nodes, bvh.tris, bvh.index
+    if nodes.shape[0] == 0:
         return best, np.inf
     kx, ky, kz, sx, sy, sz = _ray_space(dx, dy, dz)
     okx = oz if kx == 2 else (oy if kx == 1 else ox)
     oky = oz if ky == 2 else (oy if ky == 1 else ox)
     okz = oz if kz == 2 else (oy if kz == 1 else ox)
-    ix = 1.0 / dx if dx != 0.0 else 0.0
-    iy = 1.0 / dy if dy != 0.0 else 0.0
-    iz = 1.0 / dz if dz != 0.0 else 0.0
-    lo, hi, first, count, tris, index = bvh.lo, bvh.hi, bvh.first, bvh.count, bvh.tris, bvh.index
-    ok, tn = _box(lo, hi, 0, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
-    if not ok:
-        return best, np.inf
-    stack[0] = 0
-    stack_t[0] = tn
-    sp = 1
-    while sp > 0:
-        sp -= 1
-        if stack_t[sp] > bt:
-            continue
-        node = stack[sp]
-        cnt = count[node]
+    ix, iy, iz, nx, ny, nz, signed = _ray_boxes(dx, dy, dz)
+    # the root's box is not tested, only its children's (a ray missing it misses
+    # them): two inlined box tests per traversal instead of three
+    windowed = win.width > 0
+    node = 0
+    sp = 0
+    while node >= 0:
+        cnt = int(nodes[node, COUNT])
+        first = int(nodes[node, FIRST])
         if cnt > 0:
-            f = first[node]
-            for k in range(f, f + cnt):
+            for k in range(first, first + cnt):
                 idx = index[k]
-                hit, t = _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                if windowed:
+                    hit, t = _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                else:
+                    hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
                 if hit and t >= t0 and t <= bt:
                     if t < bt or best < 0 or idx < best:
                         bt = t
                         best = idx
-            continue
-        left = first[node]
-        hl, tl = _box(lo, hi, left, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
-        hr, tr = _box(lo, hi, left + 1, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, bt)
-        if hl and hr:
-            if tl <= tr:  # nearer child popped first
-                stack[sp] = left + 1
-                stack_t[sp] = tr
-                stack[sp + 1] = left
-                stack_t[sp + 1] = tl
+            node = -1
+        else:
+            hl, tl = _either_box(nodes, first, signed, ox, oy, oz, dx, dy, dz, ix, iy, iz,
+                                 nx, ny, nz, t0, bt)
+            hr, tr = _either_box(nodes, first + 1, signed, ox, oy, oz, dx, dy, dz, ix, iy,
+                                 iz, nx, ny, nz, t0, bt)
+            if hl and hr:
+                if tl <= tr:  # nearer child first, the other waits
+                    node = first
+                    stack[sp] = first + 1
+                    stack_t[sp] = tr
+                else:
+                    node = first + 1
+                    stack[sp] = first
+                    stack_t[sp] = tl
+                sp += 1
+            elif hl:
+                node = first
+            elif hr:
+                node = first + 1
             else:
-                stack[sp] = left
-                stack_t[sp] = tl
-                stack[sp + 1] = left + 1
-                stack_t[sp + 1] = tr
-            sp += 2
-        elif hl:
-            stack[sp] = left
-            stack_t[sp] = tl
-            sp += 1
-        elif hr:
-            stack[sp] = left + 1
-            stack_t[sp] = tr
-            sp += 1
+                node = -1
+        while node < 0 and sp > 0:
+            sp -= 1
+            if stack_t[sp] <= bt:
+                node = stack[sp]
     if best < 0:
         return best, np.inf
     return best, bt
 
 
-@inline
+@inline_ir
 def _all_hits(bvh, win, r, stack, hits, mark, stamp, ox, oy, oz, dx, dy, dz, t0, t1,
               exclude, any_hit):
     """Caller indices of every triangle hit with t0 <= t <= t1 (``exclude`` left out),
-    written to ``hits``; returns how many (at most 1 when ``any_hit``).
+    written to ``hits``; returns how many (at most 1 when ``any_hit``: the search
+    stops at the first hit, nearer children first).
 
-    A triangle cut into several pieces (kernels/bvh.py) is tested once: ``mark``
+    A triangle cut into several pieces (kernels/bvh.py) is counted once: ``mark``
     (indexed by caller index) holds the ``stamp`` of the query that last tested it.
+    The first-hit search needs no mark (a piece tested again misses again).
     """
-    if bvh.lo.shape[0] == 0:
+    nodes, tris, index = bvh.nodes, bvh.tris, bvh.index
+    if nodes.shape[0] == 0:
         return 0
     kx, ky, kz, sx, sy, sz = _ray_space(dx, dy, dz)
     okx = oz if kx == 2 else (oy if kx == 1 else ox)
     oky = oz if ky == 2 else (oy if ky == 1 else ox)
     okz = oz if kz == 2 else (oy if kz == 1 else ox)
-    ix = 1.0 / dx if dx != 0.0 else 0.0
-    iy = 1.0 / dy if dy != 0.0 else 0.0
-    iz = 1.0 / dz if dz != 0.0 else 0.0
-    lo, hi, first, count, tris, index = bvh.lo, bvh.hi, bvh.first, bvh.count, bvh.tris, bvh.index
+    ix, iy, iz, nx, ny, nz, signed = _ray_boxes(dx, dy, dz)
+    windowed = win.width > 0
     n = 0
-    stack[0] = 0
-    sp = 1
-    while sp > 0:
-        sp -= 1
-        node = stack[sp]
-        ok, _ = _box(lo, hi, node, ox, oy, oz, dx, dy, dz, ix, iy, iz, t0, t1)
-        if not ok:
-            continue
-        cnt = count[node]
+    node = 0
+    sp = 0
+    while node >= 0:
+        cnt = int(nodes[node, COUNT])
+        first = int(nodes[node, FIRST])
         if cnt > 0:
-            f = first[node]
-            for k in range(f, f + cnt):
+            for k in range(first, first + cnt):
                 idx = index[k]
-                if idx == exclude or mark[idx] == stamp:
+                if idx == exclude:
                     continue
-                mark[idx] = stamp
-                hit, t = _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                if not any_hit:
+                    if mark[idx] == stamp:
+                        continue
+                    mark[idx] = stamp
+                if windowed:
+                    hit, t = _test(tris, k, idx, win, r, kx, ky, kz, okx, oky, okz, sx, sy, sz)
+                else:
+                    hit, t, _ = _hit(tris, k, kx, ky, kz, okx, oky, okz, sx, sy, sz)
                 if hit and t >= t0 and t <= t1:
                     hits[n] = idx
                     n += 1
                     if any_hit:
                         return n
-            continue
-        stack[sp] = first[node]
-        stack[sp + 1] = first[node] + 1
-        sp += 2
+            node = -1
+        else:
+            hl, tl = _either_box(nodes, first, signed, ox, oy, oz, dx, dy, dz, ix, iy, iz,
+                                 nx, ny, nz, t0, t1)
+            hr, tr = _either_box(nodes, first + 1, signed, ox, oy, oz, dx, dy, dz, ix, iy,
+                                 iz, nx, ny, nz, t0, t1)
+            if hl and hr:
+                if tl <= tr:
+                    node = first
+                    stack[sp] = first + 1
+                else:
+                    node = first + 1
+                    stack[sp] = first
+                sp += 1
+            elif hl:
+                node = first
+            elif hr:
+                node = first + 1
+            else:
+                node = -1
+        if node < 0 and sp > 0:
+            sp -= 1
+            node = stack[sp]
     return n
 
 
@@ -351,8 +427,8 @@ def _n_items(bvh):
 
 
 @jit
-def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
-    """Nearest triangle along rays ``r0 .. r1-1``.
+def closest_hits(bvh, win, origin, direction, t0, t1, order, r0, r1, out_tri, out_t):
+    """Nearest triangle along rays ``order[r0:r1]``.
 
     Parameters
     ----------
@@ -363,8 +439,12 @@ def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
         Ray ``origin + t * direction``.
     t0, t1 : float
         Closed parameter interval.
+    order : ndarray, shape (R,), int64
+        The rays in the order they are cast (a permutation of 0 .. R-1; square
+        tiles of pixels, :func:`vgxsim.shadow.raycast.tile_order`, keep successive
+        rays in the same nodes); outputs stay indexed by ray.
     r0, r1 : int
-        Rays this call handles (a worker thread's band).
+        The slice of ``order`` this call handles (a worker thread's band).
     out_tri : ndarray, shape (R,), int64
         Caller's triangle index, -1 for none (ties in t: lowest index).
     out_t : ndarray, shape (R,), float64
@@ -372,7 +452,8 @@ def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
     """
     stack = np.empty(STACK_SIZE, dtype=np.int64)
     stack_t = np.empty(STACK_SIZE)
-    for r in range(r0, r1):
+    for q in range(r0, r1):
+        r = order[q]
         k, t = _closest(bvh, win, r, stack, stack_t, origin[r, 0], origin[r, 1], origin[r, 2],
                         direction[r, 0], direction[r, 1], direction[r, 2], t0, t1)
         out_tri[r] = k
@@ -381,7 +462,7 @@ def closest_hits(bvh, win, origin, direction, t0, t1, r0, r1, out_tri, out_t):
 
 @jit
 def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, active,
-                    lights, far, offset, counts, r0, r1, out_blocked, out_objects,
+                    lights, far, offset, counts, order, r0, r1, out_blocked, out_objects,
                     out_layers):
     """Per point and light: is the segment to the light blocked, and by how much.
 
@@ -414,7 +495,12 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
     counts : bool
         False: only ``out_blocked``, each segment stopping at its first hit (the fast
         path); True: also the counts, from every hit.
+    order : ndarray, shape (R,), int64
+        The rays in the order they are cast (a permutation of 0 .. R-1; square
+        tiles of pixels, :func:`vgxsim.shadow.raycast.tile_order`, keep successive
+        rays in the same nodes); outputs stay indexed by ray.
     r0, r1 : int
+        The slice of ``order`` this call handles (a worker thread's band).
     out_blocked : ndarray, shape (R, L), bool
     out_objects : ndarray, shape (R, L), int64
         Distinct objects crossed.
@@ -428,7 +514,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
     win = Window(0, np.zeros((0, 3), np.int64), np.zeros((0, 3), np.int64),
                  np.zeros(0, np.bool_))
     nl = lights.shape[0]
-    for r in range(r0, r1):
+    for q in range(r0, r1):
+        r = order[q]
         if not active[r]:
             continue
         px, py, pz = points[r, 0], points[r, 1], points[r, 2]
@@ -466,8 +553,8 @@ def shadow_segments(bvh, tri_object, n_objects, layer_weight, points, exclude, a
 
 
 @jit
-def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end, r0, r1,
-                    out_count):
+def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end, order, r0,
+                    r1, out_count):
     """Signed count of shadow-volume faces crossed by each ray, per light.
 
     Parameters
@@ -483,14 +570,20 @@ def count_crossings(bvh, win, face_light, face_weight, origin, direction, t_end,
     origin, direction : ndarray, shape (R, 3), float64
     t_end : ndarray, shape (R,), float64
         Faces with ``0 <= t <= t_end[r]`` count.
+    order : ndarray, shape (R,), int64
+        The rays in the order they are cast (a permutation of 0 .. R-1; square
+        tiles of pixels, :func:`vgxsim.shadow.raycast.tile_order`, keep successive
+        rays in the same nodes); outputs stay indexed by ray.
     r0, r1 : int
+        The slice of ``order`` this call handles (a worker thread's band).
     out_count : ndarray, shape (R, L), int64
     """
     stack = np.empty(STACK_SIZE, dtype=np.int64)
     hits = np.empty(max(1, bvh.index.shape[0]), dtype=np.int64)
     seen = np.full(_n_items(bvh), -1, dtype=np.int64)
     nl = out_count.shape[1]
-    for r in range(r0, r1):
+    for q in range(r0, r1):
+        r = order[q]
         for li in range(nl):
             out_count[r, li] = 0
         n = _all_hits(bvh, win, r, stack, hits, seen, r, origin[r, 0], origin[r, 1],

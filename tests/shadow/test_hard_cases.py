@@ -158,20 +158,77 @@ def test_snapped_default_scene_zfail_within_two_pixels_zpass_stray_pixels_counte
     assert stray > 0  # the failure is there and counted, not hidden
 
 
+def sheet_seen_from_behind(eye=(3.0, 2.5, -6.0)):
+    """An open caster, one square sheet in z = 0 (x in [-1, 1], y in [0.5, 2.5]), the
+    light in front of it (z = 3) and the eye behind it (z = -6), outside its volume:
+    the line from the light through the eye crosses z = 0 at y = 3.5, above the
+    sheet.  Every point of the sheet the eye sees is on its dark side."""
+    from vgxsim.shadow.scene import Camera, PointLight
+    from vgxsim.shadow.techniques.hard_cases import floor, scene, soup
+
+    v = [[-1.0, 0.5, 0.0], [1.0, 0.5, 0.0], [1.0, 2.5, 0.0], [-1.0, 2.5, 0.0]]
+    cam = Camera(fovy=450, near=1.0, far=40.0, eye=eye, target=(0.0, 1.5, 0.0))
+    return scene([floor(), soup("sheet", v, [[0, 1, 2, 3]])],
+                 lights=(PointLight("front", (-2.0, 4.0, 3.0), (1.0, 1.0, 1.0)),), camera=cam)
+
+
+def test_an_open_sheet_seen_from_its_dark_side_is_in_its_own_shadow():
+    """The teapot's false shadow in small (item 2 of issue 9): the segment from a
+    point of the sheet to the light meets nothing but the sheet's own triangle, so a
+    reference that only asks "is the segment blocked" called the sheet lit; but the
+    eye sees the side facing away from the light, inside the volume of the sheet's
+    own polygon ("the volume of space behind the triangle ... is in shadow"), and
+    signed edge counting's stencil holds 1 there.  Seen from the front, it is lit."""
+    sc = sheet_seen_from_behind()
+    ref = raycast(sc, W, H, subpixel=True)
+    sheet = ref.object_id == 1
+    assert sheet.sum() > 500  # the sheet fills a good part of the view
+    assert not ref.lit[..., 0][sheet].any()
+    assert ref.lit[..., 0][ref.object_id == 0].any()  # the floor around its shadow
+    for technique in ("counting", "heidmann"):
+        frame = render(sc, technique)
+        assert shadow_error(frame.lit[0][::-1], ref, 0).interior == 0, technique
+        cnt = frame.stencil[0][::-1].astype(int) - frame.stencil_zero
+        inner = sheet & ~near_boundary(np.where(ref.hit, ref.object_id, -1).astype(np.int8))
+        assert np.all(cnt[inner] == 1), technique  # one surface: its own
+    front = raycast(sheet_seen_from_behind(eye=(-3.0, 2.5, 6.0)), W, H, subpixel=True)
+    assert front.lit[..., 0][front.object_id == 1].all()
+
+
+def test_own_side_rule_by_hand():
+    """own_side_shadowed on one triangle with normal +z, seen along -z (from +z)."""
+    from vgxsim.shadow.raycast import own_side_shadowed
+
+    tri = np.array([[[0.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0]]])
+    lights = np.array([[0.0, 0.0, 5.0, 1.0],    # on the seen side: lit
+                       [0.0, 0.0, -5.0, 1.0],   # behind it: its own shadow
+                       [7.0, 3.0, 0.0, 1.0],    # in its plane: not shadowed (H4)
+                       [0.0, 0.2, -1.0, 0.0]])  # directional, from behind
+    down = np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])
+    out = own_side_shadowed(tri, np.array([0, 0]), down, lights)
+    assert out[0].tolist() == [False, True, False, True]
+    assert out[1].tolist() == [True, False, False, False]  # seen from below
+    assert not own_side_shadowed(tri, np.array([-1]), down[:1], lights).any()
+
+
 def test_teapot_open_mesh_counting_against_the_reference():
-    """H5 on the shipped teapot (open: boundary edges at the lid and spout): the 1991
-    silhouette z-pass and the closed-mesh z-fail misclassify whole regions, signed
-    edge counting leaves a few pixels (measured 3 at 96x80 over both lights, lines of
-    cracks where the tessellation has T-junctions, H6): reported, not hidden."""
+    """H5 on the shipped teapot (open: the lid gap and the spout): the 1991 silhouette
+    z-pass and the closed-mesh z-fail misclassify whole regions; signed edge counting
+    is exact.  It used to leave 183 pixels of false shadow with count 1 at 320x256
+    (subpixel(TRUE), both lights): walls seen from their dark side, where light enters
+    through the lid gap, which the reference called lit (see the sheet test above)."""
     sc = api.load_scene("teapot")
     ref = raycast(sc, W, H, subpixel=True)
 
-    def interior(technique):
-        frame = render(sc, technique)
+    def interior(technique, ref=ref, size=(W, H)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", api.ViewpointInShadowWarning)
+            frame = api.render(sc, size=size, technique=technique, subpixel=True)
         return sum(shadow_error(frame.lit[i][::-1], ref, i).interior
                    for i in range(len(sc.lights)))
 
     counting, heidmann, zfail = interior("counting"), interior("heidmann"), interior("zfail")
-    assert counting * 5 < heidmann, (counting, heidmann)
-    assert counting * 50 < zfail, (counting, zfail)
-    assert counting < 10, counting
+    assert counting == 0
+    assert heidmann > 20 and zfail > 200, (heidmann, zfail)
+    big = raycast(sc, 320, 256, subpixel=True)
+    assert interior("counting", big, (320, 256)) == 0

@@ -341,12 +341,12 @@ def test_equals_brute_force_on_random_scenes(seed):
     assert np.abs(r.crossings[..., 0]).max() > 0
 
 
-def test_thread_count_and_split_rule_do_not_change_the_result():
+def test_thread_count_split_rule_and_ray_order_do_not_change_the_result():
     sc = random_scene(5, directional=True)
     faces = [_point_light_faces(sc), (np.zeros((0, 3, 3)), np.zeros(0, np.int64))]
     base = raycast(sc, 48, 40, faces=faces, threads=1)
     for kw in ({"threads": 2}, {"sah": False}, {"threads": 3, "sah": False},
-               {"split_faces": False}):
+               {"split_faces": False}, {"tile": 1}, {"tile": 7, "threads": 2}):
         other = raycast(sc, 48, 40, faces=faces, **kw)
         for f in dataclasses.fields(base):
             assert np.array_equal(getattr(base, f.name), getattr(other, f.name),
@@ -398,7 +398,8 @@ def count_hits(tris, o, d, weights=None):
     out = np.zeros((len(o), 1), np.int64)
     count_crossings(bvh, no_window(), np.zeros(len(tris), np.int64), w,
                     np.ascontiguousarray(o, float),
-                    np.ascontiguousarray(d, float), np.ones(len(o)), 0, len(o), out)
+                    np.ascontiguousarray(d, float), np.ones(len(o)),
+                    np.arange(len(o), dtype=np.int64), 0, len(o), out)
     return out[:, 0]
 
 
@@ -643,3 +644,41 @@ def test_a_scene_moved_far_from_the_origin_keeps_its_shadows():
     assert np.array_equal(a.object_id[inner], b.object_id[inner])
     assert np.array_equal(a.lit[inner], b.lit[inner])
     assert np.array_equal(a.crossings[inner], b.crossings[inner])
+
+
+def test_tile_order_reads_square_tiles_in_row_order():
+    from vgxsim.shadow.raycast import tile_order
+
+    # 5 x 3 pixels, tiles of 2: (0,1 | 5,6), (2,3 | 7,8), (4 | 9), then the top row
+    assert tile_order(5, 3, 2).tolist() == [0, 1, 5, 6, 2, 3, 7, 8, 4, 9, 10, 11, 12, 13, 14]
+    assert tile_order(5, 3, 1).tolist() == list(range(15))
+    big = tile_order(37, 23, 16)
+    assert np.array_equal(np.sort(big), np.arange(37 * 23))
+
+
+def test_signed_box_test_equals_the_general_one():
+    """The per-ray sign choice of slab planes (kernels/raycast.py _box_signed) gives
+    the general test's answer and entry parameter, infinite bounds included."""
+    from vgxsim.kernels.raycast import _box, _box_signed, _ray_boxes
+
+    rng = np.random.default_rng(4)
+    nodes = np.zeros((400, 8))
+    lo = rng.uniform(-2, 2, (400, 3))
+    nodes[:, :3] = lo
+    nodes[:, 3:6] = lo + rng.uniform(0, 1.5, (400, 3))
+    nodes[:, :3][rng.random((400, 3)) < 0.1] = -np.inf  # unbounded boxes
+    nodes[:, 3:6][rng.random((400, 3)) < 0.1] = np.inf
+    agree = hits = 0
+    for _ in range(300):
+        o = rng.uniform(-3, 3, 3)
+        d = rng.normal(size=3) * rng.choice([1e-3, 1.0, 1e3])
+        ix, iy, iz, nx, ny, nz, signed = _ray_boxes(*d)
+        assert signed
+        for k in range(0, 400, 7):
+            a = _box(nodes, k, *o, *d, ix, iy, iz, 0.0, 1.0)
+            b = _box_signed(nodes, k, *o, ix, iy, iz, nx, ny, nz, 0.0, 1.0)
+            assert a[0] == b[0] and (not a[0] or a[1] == b[1])
+            agree += 1
+            hits += a[0]
+    assert 0 < hits < agree
+    assert not _ray_boxes(1.0, 0.0, 2.0)[-1]  # a zero component takes the general test

@@ -22,7 +22,12 @@ BVH, :mod:`vgxsim.kernels.bvh`):
   world units of it (:func:`segment_scales`: ``eps`` times the scene's size plus
   1e-13 times its largest coordinate, so a scene moved far from the origin keeps
   its shadows; 2e-6 units for the default scene) -- the definition of a hard
-  shadow (article: "The volume of space behind the triangle ... is in shadow").
+  shadow (article: "The volume of space behind the triangle ... is in shadow"),
+  and P's own caster triangle does not have the light on the side the eye sees it
+  from (:func:`own_side_shadowed`: a sheet seen from the side facing away from the
+  light is behind itself, in the volume of its own triangle; this decides points
+  on open casters, the inside of the teapot and its walls seen where light comes
+  in through the lid gap, where no other triangle is met).
   Point and spot lights use their position (a spot's cone limits its light, not its
   shadow); a directional light (``w = 0``: IRIS GL's POSITION with w = 0 is a
   direction toward the light) uses ``L = P + far * unit(direction)``, ``far``
@@ -84,6 +89,7 @@ import numpy as np
 
 from vgxsim import threads as _threads
 from vgxsim.geometry.pipeline import GUARD_PIXELS, to_clip
+from vgxsim.geometry.transform import apply
 from vgxsim.kernels.bvh import BVH, build_arrays, split_references
 from vgxsim.kernels.clip import (
     COORD_LIMIT,
@@ -114,7 +120,8 @@ class RayCastResult:
         Ray parameter of the hit, 0 at the near plane and 1 at the far plane (inf for
         background).
     lit : ndarray, shape (H, W, L), bool
-        Per light: the segment from the hit point to the light meets no caster.
+        Per light: the segment from the hit point to the light meets no caster, and
+        the light is on the visible side of the hit point's own caster triangle.
         False on background pixels.
     occluders : ndarray, shape (H, W, L), int64
         Per light: number of caster objects the segment meets (0 when ``counts``
@@ -170,8 +177,8 @@ def pixel_rays(scene: Scene, width: int, height: int) -> tuple[np.ndarray, np.nd
     ones = np.ones_like(xx)
 
     def unproject(z: float) -> np.ndarray:
-        clip = np.stack([xx, yy, z * ones, ones], axis=-1)
-        obj = clip @ inv
+        clip = np.stack([xx, yy, z * ones, ones], axis=-1).reshape(-1, 4)
+        obj = apply(clip, inv).reshape(height, width, 4)  # no BLAS threads (transform.apply)
         return obj[..., :3] / obj[..., 3:4]
 
     near = unproject(-1.0)
@@ -329,7 +336,7 @@ def snap_to_window(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
     ndarray, shape (T, 3, 4), float64
     """
     v = tris4.reshape(-1, 4)
-    clip = v @ mvp
+    clip = to_clip(v, mvp)  # the rasterizer's own transform, rounding included
     x, y, z, w = clip[:, 0], clip[:, 1], clip[:, 2], clip[:, 3]
     fin = v[:, 3] == 1.0
     hx, hy = width / 2.0, height / 2.0
@@ -345,7 +352,7 @@ def snap_to_window(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
         wk = w[ok]
         snapped = np.stack([((xf / ONE + 0.5) / hx - 1.0) * wk,
                             ((yf / ONE + 0.5) / hy - 1.0) * wk, z[ok], wk], axis=1)
-        snapped = snapped @ np.linalg.inv(mvp)
+        snapped = apply(snapped, np.linalg.inv(mvp))
         out[ok, :3] = snapped[:, :3] / snapped[:, 3:4]
     return out.reshape(tris4.shape)
 
@@ -386,7 +393,8 @@ def _rasterized(tris4: np.ndarray, mvp: np.ndarray, width: int, height: int,
                              -1.0, 1.0, bool(subpixel))
     w = out_v[:, 3]
     snapped = np.stack([((xf / ONE + 0.5) / hx - 1.0) * w, ((yf / ONE + 0.5) / hy - 1.0) * w,
-                        out_v[:, 2], w], axis=1) @ np.linalg.inv(mvp)
+                        out_v[:, 2], w], axis=1)
+    snapped = apply(snapped, np.linalg.inv(mvp))
     at_inf = np.zeros(len(out_v), bool)
     at_inf[:n] = v[:, 3] == 0.0
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -408,6 +416,25 @@ def _bands(n: int, nthreads: int) -> list[tuple[int, int]]:
     parts = max(1, min(n, 8 * nthreads if nthreads > 1 else 1))
     edges = np.linspace(0, n, parts + 1).astype(np.int64)
     return [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:], strict=True) if b > a]
+
+
+def tile_order(width: int, height: int, tile: int = 16) -> np.ndarray:
+    """Pixel indices ``x + width * y`` tile by tile: square ``tile x tile`` tiles in
+    row order, each read in row order (partial tiles at the right and top edges).
+
+    Casting in this order keeps successive rays in the same BVH nodes; measured on
+    the dense torus at 1280 x 1024, primary rays per CPU-second: rows 4.8 M, tiles
+    of 8: 5.1 M, 16: 5.3 M, 32: 5.2 M.  ``tile <= 1`` gives row order.
+
+    Returns
+    -------
+    ndarray, shape (width * height,), int64
+    """
+    if tile <= 1:
+        return np.arange(width * height, dtype=np.int64)
+    y, x = np.divmod(np.arange(width * height, dtype=np.int64), width)
+    key = np.lexsort((x, y, x // tile, y // tile))
+    return key.astype(np.int64)
 
 
 def run_bands(kernel, n: int, nthreads: int, *args) -> None:
@@ -452,7 +479,18 @@ def build_bvh(tris4: np.ndarray, usable: np.ndarray | None = None, *, leaf_size:
     ref, lo, hi = split_references(tris4, np.ascontiguousarray(usable, dtype=np.bool_),
                                    float(max_extent), np.asarray(region[0], np.float64),
                                    np.asarray(region[1], np.float64), int(max_pieces))
-    return BVH(*build_arrays(tris4, ref, lo, hi, int(leaf_size), bool(sah)))
+    nodes, ordered, index = build_arrays(tris4, ref, lo, hi, int(leaf_size), bool(sah))
+    return BVH(_cache_line_aligned(nodes), ordered, index)
+
+
+def _cache_line_aligned(a: np.ndarray) -> np.ndarray:
+    """A copy of ``a`` whose data starts on a 64-byte boundary, so that each 64-byte
+    node record of a BVH lies in one cache line (numpy aligns to 16 bytes only)."""
+    buf = np.empty(a.nbytes + 64, np.uint8)
+    skip = (-buf.ctypes.data) % 64
+    out = buf[skip:skip + a.nbytes].view(a.dtype).reshape(a.shape)
+    out[...] = a
+    return out
 
 
 def scene_bvh(tris4: np.ndarray, keep: np.ndarray | None = None, *, sah: bool = True,
@@ -505,7 +543,8 @@ def nearest_hit(origin: np.ndarray, direction: np.ndarray, tris: np.ndarray,
     idx = np.empty(len(o), np.int64)
     t = np.empty(len(o))
     n = _threads.get_threads() if threads is None else int(threads)
-    run_bands(closest_hits, len(o), n, bvh, no_window(), o, d, 0.0, float(tmax), (idx, t))
+    run_bands(closest_hits, len(o), n, bvh, no_window(), o, d, 0.0, float(tmax),
+              np.arange(len(o), dtype=np.int64), (idx, t))
     return idx, t
 
 
@@ -547,6 +586,51 @@ def _light_facing(tris4: np.ndarray, light: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", n, to_light) > 0.0
 
 
+def own_side_shadowed(tris4: np.ndarray, tri: np.ndarray, direction: np.ndarray,
+                      lights: np.ndarray) -> np.ndarray:
+    """Whether each point's own triangle lies between the side the eye sees and the light.
+
+    The eye ray meets triangle ``tri[r]`` from the side ``-direction[r]`` points to;
+    that side is lit only if the light is on it too:  with ``N = (v1 - v0) x (v2 -
+    v0)``, the point is shadowed by its own triangle iff ``(N . direction) *
+    (N . (l - lw v0)) > 0`` (``N . l`` for a directional light, the facing rule of
+    :meth:`vgxsim.shadow.scene.Polyhedron.facing`).  This is the volume of the
+    triangle itself (shadow_literature.md 1.1 and 1.3: the region behind each
+    caster polygon is in shadow, and a point's count is the number of caster
+    surfaces between it and the light, H5): the eye ray reaching P from behind the
+    triangle comes through that volume, which is what a stencil counts.  On a
+    closed caster it changes nothing away from silhouettes (the segment meets
+    another triangle anyway); on an open one it decides the inside and the far side
+    of a sheet.  A light exactly in the plane (0) does not shadow (H4).
+
+    Parameters
+    ----------
+    tris4 : ndarray, shape (T, 3, 4), float64
+    tri : ndarray, shape (R,), int64
+        Triangle of each point, -1 for none (never shadowed).
+    direction : ndarray, shape (R, 3), float64
+        The eye rays.
+    lights : ndarray, shape (L, 4), float64
+
+    Returns
+    -------
+    ndarray, shape (R, L), bool
+    """
+    out = np.zeros((len(tri), len(lights)), bool)
+    on = tri >= 0
+    if not on.any():
+        return out
+    t = tris4[tri[on]]
+    a, b, c = t[:, 0, :3], t[:, 1, :3], t[:, 2, :3]
+    n = np.cross(b - a, c - a)
+    seen = np.einsum("ij,ij->i", n, direction[on])
+    for li, lp in enumerate(lights):
+        to_light = lp[:3][None, :] - lp[3] * a
+        side = np.einsum("ij,ij->i", n, to_light)
+        out[on, li] = ((seen > 0.0) & (side > 0.0)) | ((seen < 0.0) & (side < 0.0))
+    return out
+
+
 def _scene_faces(scene: Scene, edges: str) -> list[tuple[np.ndarray, np.ndarray]]:
     """Per light: the shadow-face triangles the renderer draws and their +-1 signs."""
     out = []
@@ -562,7 +646,7 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
             eps: float = 1e-7, subpixel: bool | None = None,
             faces: Sequence[tuple[np.ndarray, np.ndarray]] | None = None,
             counts: bool = True, threads: int | None = None, sah: bool = True,
-            split_faces: bool = True) -> RayCastResult:
+            split_faces: bool = True, tile: int = 16) -> RayCastResult:
     """Ray-cast the scene: visible surface, per-light lit mask and shadow counts.
 
     See the module docstring for exactly what is computed.
@@ -595,6 +679,9 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     split_faces : bool
         Cut long shadow faces into pieces for the BVH (:func:`scene_bvh`); the
         result does not depend on it, the time does.
+    tile : int
+        Rays are cast in square tiles of this many pixels (:func:`tile_order`; 1:
+        row by row); the result does not depend on it, the time does.
 
     Returns
     -------
@@ -640,7 +727,8 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     scene_tree = scene_bvh(visible, sah=sah)
     piece = np.empty(n, np.int64)
     thit = np.empty(n)
-    run_bands(closest_hits, n, nthreads, scene_tree, scene_win, o, d, 0.0, 1.0,
+    order = tile_order(width, height, tile)
+    run_bands(closest_hits, n, nthreads, scene_tree, scene_win, o, d, 0.0, 1.0, order,
               (piece, thit))
     hit = piece >= 0
     tri_idx = np.where(hit, visible_src[np.maximum(piece, 0)], -1) if len(visible_src) else piece
@@ -659,14 +747,18 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     layers = np.zeros((n, nl), np.int64)
     pts = np.ascontiguousarray(np.where(hit[:, None], point, 0.0))
     run_bands(shadow_segments, n, nthreads, caster_tree, tri_obj, len(scene.objects), layer_w,
-         pts, tri_idx, hit, lights, far, offset, bool(counts),
-         (blocked, occl, layers))
+              pts, tri_idx, hit, lights, far, offset, bool(counts), order,
+              (blocked, occl, layers))
+    own = np.where(hit, tri_idx, -1)
+    own[hit] = np.where(caster[tri_idx[hit]], tri_idx[hit], -1)
+    blocked |= own_side_shadowed(tris4, own, d, lights)
     eye_b = np.zeros((1, nl), bool)
     eye_o = np.zeros((1, nl), np.int64)
     eye_l = np.zeros((1, nl), np.int64)
     shadow_segments(caster_tree, tri_obj, len(scene.objects), layer_w,
                     np.asarray(cam.eye, np.float64).reshape(1, 3), np.full(1, -1, np.int64),
-                    np.ones(1, bool), lights, far, offset, True, 0, 1, eye_b, eye_o, eye_l)
+                    np.ones(1, bool), lights, far, offset, True, np.zeros(1, np.int64), 0, 1,
+                    eye_b, eye_o, eye_l)
 
     # 3. shadow-face crossings along the eye rays
     # eye rays end on the scene (or at the far plane): cut faces finely within the
@@ -677,8 +769,7 @@ def raycast(scene: Scene, width: int, height: int, *, edges: str = "silhouette",
     cross = np.zeros((n, nl), np.int64)
     t_end = np.where(hit, thit, 1.0)
     run_bands(count_crossings, n, nthreads, face_tree, face_win, face_light, face_weight, o,
-              d, t_end,
-         (cross,))
+              d, t_end, order, (cross,))
 
     obj = np.where(hit, tri_obj[np.maximum(tri_idx, 0)], -1) if len(tri_obj) else tri_idx
     h, w = height, width
