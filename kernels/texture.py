@@ -32,7 +32,7 @@ from vgxsim.stream.opcodes import CM, CRAW, CSKIP, SYNC, C, N, T, V
 
 from .clip import ONE
 from .decode import _int_payload
-from .options import inline, jit
+from .options import callee, inline, jit
 
 
 @jit
@@ -106,7 +106,7 @@ def _filtered(texels, base, w, i0, i1, j0, j1, al, be, ch):
         + (al * be) * _texel(texels, base, w, i1, j1, ch)
 
 
-@jit
+@callee
 def texture_fragment(t_tex, t, x, y, x0, y0, info, env_colour, texels, slot, r, g, b, a):
     """Textured colour of one fragment.
 
