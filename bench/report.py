@@ -207,7 +207,8 @@ def main(argv=None) -> int:
     rates, work = vgxsim_rates(rounds)
     split = small_triangle_split(rounds)
     mesa = {} if args.no_mesa else mesa_rates()
-    (cold, _), [(warm, _)] = startup.start_times()
+    cold_run, warm_runs = startup.start_times()
+    cold, warm = cold_run[0], warm_runs[0][0]
     frame = heidmann_frame(rounds)
     dense = dense_rates(rounds, not args.no_mesa)
 

@@ -8,8 +8,9 @@ the process is started to the moment its first image exists, so it includes the
 interpreter, the imports, the Numba compiles (cold) or cache loads (warm) and the
 first frame's Python work.  *Cold*: ``NUMBA_CACHE_DIR`` is a new, empty folder;
 *warm*: the same folder again, filled by the cold run just before.  CPU seconds
-are the process's and its children's (the parallel-compile helper of
-vgxsim/coldstart.py included): on a loaded machine they move less than wall time.
+are given for the process and, apart, for its children (the parallel-compile
+helper of vgxsim/coldstart.py): on a loaded machine they move less than wall time,
+and on an idle one with two CPUs the larger of the two bounds the cold start.
 
 Workloads:
 
@@ -31,12 +32,20 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
+
+# Printed by every workload when its image exists: wall seconds since t0, CPU seconds
+# of this process, CPU seconds of its finished children (the cold-start helper).
+_DONE = r"""
+import resource
+_me = resource.getrusage(resource.RUSAGE_SELF)
+_kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(time.time() - t0, _me.ru_utime + _me.ru_stime, _kids.ru_utime + _kids.ru_stime)
+"""
 
 TRIANGLE = r"""
 import time, sys
@@ -50,8 +59,7 @@ ctx.clear_planes(7, 0xff000000)
 ctx.draw_arrays('polygon', [[10, 10, 0], [300, 20, 0], [160, 240, 0]],
                 [[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1]])
 img = ctx.read_rgba()
-print(time.time() - t0)
-"""
+""" + _DONE
 
 SHADOWS = r"""
 import time, sys
@@ -59,15 +67,13 @@ t0 = float(sys.argv[1])
 from vgxsim.cli import main
 status = main(["shadows", "-o", sys.argv[2], "--overwrite", "--size", "320x256"])
 assert status == 0, status
-print(time.time() - t0)
-"""
+""" + _DONE
 
 FLOOR = r"""
 import time, sys
 t0 = float(sys.argv[1])
 import numba
-print(time.time() - t0)
-"""
+""" + _DONE
 
 WORKLOADS = {"triangle": TRIANGLE, "shadows": SHADOWS}
 
@@ -93,26 +99,25 @@ atexit.register(lambda: print("COMPILES " + json.dumps(_rows)))
 """
 
 
-def run_once(python: str, code: str, cache: str, out: str, env_extra: dict) -> tuple[float, float]:
-    """(wall seconds to the first image, CPU seconds of the process tree) of one run."""
+def run_once(python: str, code: str, cache: str, out: str, env_extra: dict
+             ) -> tuple[float, float, float]:
+    """Wall seconds to the first image, CPU seconds of the process and of its helper
+    (children finished by then) in one run."""
     env = dict(os.environ, NUMBA_CACHE_DIR=cache, **env_extra)
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.time()
     proc = subprocess.run([python, "-c", code, repr(t0), out], capture_output=True,
                           text=True, env=env, cwd=tempfile.gettempdir())
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode != 0:
         raise RuntimeError(f"{python} failed:\n{proc.stderr[-2000:]}")
-    wall = float(proc.stdout.strip().splitlines()[-1])
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return wall, cpu
+    wall, cpu, helper = (float(x) for x in proc.stdout.strip().splitlines()[-1].split())
+    return wall, cpu, helper
 
 
 def start_times(code: str = TRIANGLE, python: str = sys.executable, warm_runs: int = 1,
                 env_extra: dict | None = None) -> tuple[tuple[float, float], list]:
     """One cold run into a new cache folder, then ``warm_runs`` warm runs from it.
 
-    Returns ((cold wall, cold CPU), [(warm wall, warm CPU), ...]).
+    Returns (cold, [warm, ...]), each (wall s, CPU s, helper CPU s) (:func:`run_once`).
     """
     env_extra = env_extra or {}
     with tempfile.TemporaryDirectory() as cache:
@@ -182,36 +187,41 @@ def main(argv=None) -> int:
         return 0
     load0 = os.getloadavg()
     floor = []
-    res = {(w, v[0]): {"cold": [], "cold_cpu": [], "warm": [], "warm_cpu": []}
-           for w in names for v in variants}
+    keys = ("cold", "cold_cpu", "cold_helper", "warm", "warm_cpu")
+    res = {(w, v[0]): {k: [] for k in keys} for w in names for v in variants}
     for r in range(args.rounds):
         with tempfile.TemporaryDirectory() as cache:
             floor.append(run_once(sys.executable, FLOOR, cache, "", {})[0])
         order = variants if r % 2 == 0 else variants[::-1]
         for w in names:
             for name, python, env_extra in order:
-                (cw, cc), warm = start_times(WORKLOADS[w], python, args.warm_runs, env_extra)
+                (cw, cc, ch), warm = start_times(WORKLOADS[w], python, args.warm_runs,
+                                                 env_extra)
                 d = res[w, name]
                 d["cold"].append(cw)
                 d["cold_cpu"].append(cc)
-                d["warm"] += [x for x, _ in warm]
-                d["warm_cpu"] += [c for _, c in warm]
-                print(f"  round {r} {w:8s} {name:8s} cold {cw:6.2f} s (cpu {cc:6.2f})  warm "
-                      + " ".join(f"{x:.2f}" for x, _ in warm), flush=True)
+                d["cold_helper"].append(ch)
+                d["warm"] += [x[0] for x in warm]
+                d["warm_cpu"] += [x[1] for x in warm]
+                print(f"  round {r} {w:8s} {name:8s} cold {cw:6.2f} s (cpu {cc:6.2f} + helper "
+                      f"{ch:5.2f})  warm " + " ".join(f"{x[0]:.2f}" for x in warm)
+                      + f"  load {os.getloadavg()[0]:.1f}", flush=True)
     load1 = os.getloadavg()
     print(f"\nload average before {load0[0]:.1f} {load0[1]:.1f} {load0[2]:.1f}, "
           f"after {load1[0]:.1f} {load1[1]:.1f} {load1[2]:.1f}; {os.cpu_count()} CPUs")
     print(f"floor (python -c 'import numba'): median {_median(floor):.2f} s")
-    print(f"{'workload':9s} {'variant':8s} {'cold s':>7s} {'cpu s':>6s} {'warm s':>7s} "
-          f"{'cpu s':>6s}  '{variants[0][0]}' / variant (cold, warm)")
+    print("medians; cpu = CPU seconds of the process, helper = of its cold-start helper")
+    print(f"{'workload':9s} {'variant':8s} {'cold s':>7s} {'cpu':>6s} {'helper':>6s} "
+          f"{'warm s':>7s} {'cpu':>6s}  '{variants[0][0]}' / variant: cold, warm")
     for w in names:
         ref = res[w, variants[0][0]]
         for name, _, _ in variants:
             d = res[w, name]
-            ratio = (f"{_median(ref['cold']) / _median(d['cold']):.2f}, "
-                     f"{_median(ref['warm']) / _median(d['warm']):.2f}")
-            print(f"{w:9s} {name:8s} {_median(d['cold']):7.2f} {_median(d['cold_cpu']):6.2f} "
-                  f"{_median(d['warm']):7.2f} {_median(d['warm_cpu']):6.2f}  {ratio}")
+            m = {k: _median(d[k]) for k in keys}
+            print(f"{w:9s} {name:8s} {m['cold']:7.2f} {m['cold_cpu']:6.2f} "
+                  f"{m['cold_helper']:6.2f} {m['warm']:7.2f} {m['warm_cpu']:6.2f}  "
+                  f"{_median(ref['cold']) / m['cold']:.2f}, "
+                  f"{_median(ref['warm']) / m['warm']:.2f}")
     return 0
 
 
