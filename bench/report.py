@@ -30,7 +30,6 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import time
 
 import numba
@@ -41,6 +40,7 @@ sys.path.insert(0, HERE)
 
 import dense_scene  # noqa: E402
 import scenes  # noqa: E402
+import startup  # noqa: E402
 
 from vgxsim.batch import CommandBatch  # noqa: E402
 
@@ -222,34 +222,6 @@ def mesa_rates() -> dict:
     return out
 
 
-FIRST_IMAGE = r"""
-import time, sys
-t0 = float(sys.argv[1])
-from vgxsim.pipeline.context import Context
-from vgxsim.geometry.transform import orthographic
-ctx = Context(320, 256, stencil=8)
-ctx.matrices.load_projection(orthographic(-0.5, 319.5, -0.5, 255.5, -1, 1))
-ctx.raster.set(zbuffer=True)
-ctx.clear_planes(7, 0xff000000)
-ctx.draw_arrays('polygon', [[10, 10, 0], [300, 20, 0], [160, 240, 0]],
-                [[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1]])
-img = ctx.read_rgba()
-print(time.time() - t0)
-"""
-
-
-def start_times() -> tuple[float, float]:
-    with tempfile.TemporaryDirectory() as cache:
-        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
-        res = []
-        for _ in range(2):
-            t0 = time.time()
-            proc = subprocess.run([sys.executable, "-c", FIRST_IMAGE, repr(t0)],
-                                  capture_output=True, text=True, env=env, check=True)
-            res.append(float(proc.stdout.strip().splitlines()[-1]))
-        return res[0], res[1]
-
-
 def heidmann_frame(rounds: int) -> dict | None:
     try:
         from vgxsim.examples import heidmann1991
@@ -290,7 +262,8 @@ def main(argv=None) -> int:
     split = small_triangle_split(rounds)
     switched = raster_switches(rounds)
     mesa = {} if args.no_mesa else mesa_rates()
-    cold, warm = start_times()
+    cold_run, warm_runs = startup.start_times()
+    cold, warm = cold_run[0], warm_runs[0][0]
     frame = heidmann_frame(rounds)
     dense = dense_rates(rounds, not args.no_mesa)
 

@@ -74,7 +74,7 @@ from .fragment import (
     wrap_z24,
     write_z,
 )
-from .options import inline_ir, jit
+from .options import callee, inline_ir, jit
 from .raster import covers, row_span
 from .spans import edge_next, edge_start_at, span_from
 from .texture import texture_fragment
@@ -281,7 +281,7 @@ def _triangle_rows(
         note_z_written(tb, xlo, xhi, zmin, zmax, dv[D_ZMASK])
 
 
-@jit
+@callee
 def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colour,
                  edge_mode, st, dv, tab, front, back, zbuf, sten, tex):
     """The general per-fragment path for one row (any state; the edge-function
@@ -367,7 +367,7 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
                       front, back, zbuf, sten)
 
 
-@jit
+@callee
 def _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
                 lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, keep, cbuf, zbuf,
                 sten):
@@ -398,7 +398,7 @@ def _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, 
             cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
 
 
-@jit
+@callee
 def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                       front, back, zbuf, sten):
     """MODE_COLOUR without a z test or with a general blend: per-pixel branches,
@@ -440,7 +440,7 @@ def _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
         buf[ux] = (dst & keep) | (out & wm)
 
 
-@jit
+@callee
 def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten, tb):
     ylo = max(y_lo, st[S_SY0])
     yhi = min(y_hi, st[S_SY1])
@@ -483,7 +483,7 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten, tb):
                 row[ux] = (row[ux] & ~wm) | sval
 
 
-@jit
+@callee
 def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
                   front, back, zbuf, sten, tb, work):
     if dv[D_ZWRITE] != 0:

@@ -37,7 +37,7 @@ from vgxsim.stream.opcodes import CM, CRAW, CSKIP, SYNC, C, N, T, V
 
 from .clip import ONE
 from .decode import _int_payload
-from .options import inline, jit
+from .options import callee, inline, jit
 
 
 @jit
@@ -178,7 +178,7 @@ def _level_of_detail(fil, levels, rho2):
     return d, f, bilinear
 
 
-@jit
+@callee
 def _mipmapped(texels, base, w, h, ws, wt, s, tt, fil, levels, rho2):
     """A MIPMAP-filtered texel: level ``d`` of :func:`_level_of_detail` with weight
     1 - f, then, for the linear filters below the last level, level d + 1 with weight
@@ -199,7 +199,7 @@ def _mipmapped(texels, base, w, h, ws, wt, s, tt, fil, levels, rho2):
     return c0, c1, c2, c3
 
 
-@jit
+@callee
 def texture_fragment(t_tex, t, x, y, x0, y0, info, env_colour, texels, slot, r, g, b, a):
     """Textured colour of one fragment.
 

@@ -37,7 +37,7 @@ from vgxsim.state.codes import (
 )
 
 from .fragment import cmp_bits, round_z, write_z
-from .options import inline, jit
+from .options import callee, inline
 from .raster import covers
 
 TILE_SHIFT = 6
@@ -60,7 +60,7 @@ def _plane_at(z0, dzdx, dzdy, x0, y0, x, y):
     return za + dzdx * (x - x0)
 
 
-@jit
+@callee
 def scan_tile(zbuf, tx, y_lo, y_hi, tb):
     """Exact depth bounds of tile ``tx`` over rows ``[y_lo, y_hi]`` into ``tb[tx]``."""
     x0 = tx << TILE_SHIFT
@@ -89,7 +89,7 @@ def z_fails_everywhere(zfunc, zlo, zhi, blo, bhi):
     return not ((lt and can_lt) or (eq and can_eq) or (gt and can_gt))
 
 
-@jit
+@callee
 def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, zbuf, tb,
                    runs, skip, cover, merge, work):
     """Classify the tiles of triangle ``t``'s rectangle in one band; write the runs

@@ -16,7 +16,7 @@ from vgxsim import coldstart, threads
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
 from vgxsim.kernels.render import bin_primitives, gather_band_records, render_bands
-from vgxsim.kernels.setup import setup_triangles, setup_triangles_states
+from vgxsim.kernels.setup import setup_triangles_states
 from vgxsim.kernels.texture import setup_texture_planes
 from vgxsim.state.codes import (
     CLEAR_COLOUR,
@@ -284,21 +284,26 @@ class CommandBatch:
         self._grow_records(end)
         start = self.ntris
         out = self._records()
+        # One set-up kernel for one state and for many (setup_triangles_states, with
+        # the state and cull repeated): the first image then compiles one, not two.
+        idx = np.full(nt, s, np.int64)
+        culls = np.full(nt, rs.cull, np.int64)
         nthreads = threads.get_threads()
         if nthreads > 1 and nt >= PARALLEL_SETUP:
             # Every triangle owns its slot (dead records for culled ones), so chunks
             # of one call set up in parallel and the drawing order is unchanged.
             cuts = np.linspace(0, nt, nthreads + 1).astype(np.int64)
             pool = threads.pool(nthreads)
-            futures = [pool.submit(setup_triangles, xf, yf, zw, colv, tris[a:b], src[a:b],
-                                   flatv, s, rs.cull, flat, want_colour, *out, start + a)
+            futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, tris[a:b],
+                                   src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
+                                   *out, start + a)
                        for a, b in zip(cuts[:-1], cuts[1:], strict=True) if b > a]
             for f in futures:
                 f.result()
             self.ntris = start + nt
         else:
-            self.ntris = setup_triangles(xf, yf, zw, colv, tris, src, flatv, s, rs.cull, flat,
-                                         want_colour, *out, start)
+            self.ntris = setup_triangles_states(xf, yf, zw, colv, tris, src, flatv, idx, culls,
+                                                flat, want_colour, *out, start)
         self._texture_planes(xf, yf, tex, tris, start)
         refs = np.arange(start, self.ntris, dtype=np.int64)
         # Bin by the rows the triangle can touch inside the raster rectangle, so bands

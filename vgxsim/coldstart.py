@@ -4,11 +4,17 @@ With an empty Numba cache the first image waits for every kernel it needs to
 compile, one after another (Numba compiles under one global lock, so threads do
 not help).  The kernels fall into two trees that share nothing: the band kernel
 (``render_bands`` and everything it calls) and the geometry kernels (transform,
-clip, project, set-up).  When the band kernel's cache entry is missing, the first
-:class:`~vgxsim.batch.CommandBatch` of a process starts one helper process that
-draws a tiny image with flushing switched off (so it compiles, and caches, only the
-geometry kernels), compiles the band kernel itself by flushing a one-clear batch,
-then waits for the helper; the geometry kernels then load from the cache.
+clip, project, set-up, the command-stream decoder, edge adjacency and Newell
+normals of shadow-casting meshes).  When the band kernel's cache entry is missing,
+the first :class:`~vgxsim.batch.CommandBatch` of a process starts one helper
+process that draws a tiny image through both front ends (``Context.draw_arrays``
+and the IRIS GL calls) and builds the adjacency of a tetrahedron, with flushing
+switched off (so it compiles, and caches, only the geometry kernels); meanwhile
+this process compiles the band kernel by flushing a one-clear batch, then waits
+for the helper.  The geometry kernels then load from the cache.  The band kernel
+is the longer of the two, so the helper's extra kernels (those of ``vgxsim run``
+programs, ``vgxsim shadows`` and the examples) come at no cost to a first image
+that does not use them.
 
 Set ``VGXSIM_PARALLEL_COMPILE=0`` to compile in-process only (also the default on a
 single CPU, and whenever the cache cannot be inspected).
@@ -34,6 +40,24 @@ ctx.raster.set(zbuffer=True)
 ctx.draw_arrays("polygon", [[1, 1, 0], [30, 2, 0], [16, 30, 0]],
                 [[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1]])
 ctx.flush()
+from vgxsim import gl
+gl.prefsize(16, 12)
+w = gl.winopen("coldstart")
+gl.RGBmode()
+gl.doublebuffer()
+gl.gconfig()
+gl.zbuffer(1)
+gl.ortho(-1, 1, -1, 1, -1, 1)
+gl.bgnpolygon()
+gl.c3f((1, 0, 0))
+for v in ((-0.5, -0.5, 0), (0.5, -0.5, 0), (0, 0.5, 0)):
+    gl.v3f(v)
+gl.endpolygon()
+gl.swapbuffers()
+gl.winclose(w)
+from vgxsim.shadow.scene import polyhedron_from_polygons
+polyhedron_from_polygons([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
+                         [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], "tetrahedron")
 """
 
 

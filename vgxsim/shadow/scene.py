@@ -38,12 +38,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 
 from vgxsim import GL
 from vgxsim.geometry import transform
+
+# trimesh (and networkx, its graph engine) is imported by the functions that build
+# meshes with it (boxes, grid boxes): importing it costs more than the rest of a
+# warm start, and a program that only draws, or a .glo scene, never needs it.
+if TYPE_CHECKING:
+    import trimesh
 
 # Material parts, the values ``DrawObjects(matl)`` takes (article: DrawObjects
 # (matl_emitambient) / DrawObjects (matl_diffspec)); MATL_FULL is every component
@@ -475,7 +481,8 @@ def object_transform(position: Vec3 = (0.0, 0.0, 0.0), rotate: Vec3 = (0.0, 0.0,
     translate; rotate x; rotate y; rotate z; scale.  Returned as a column-vector
     4x4 matrix (trimesh convention); rotation angles in degrees.
     """
-    tr = trimesh.transformations
+    from trimesh import transformations as tr
+
     m = tr.translation_matrix(position)
     for ang, axis in zip(rotate, np.eye(3), strict=True):  # x, then y, then z
         m = m @ tr.rotation_matrix(math.radians(ang), axis)
@@ -503,6 +510,8 @@ def make_box(name: str, extents: Vec3, *, position: Vec3 = (0.0, 0.0, 0.0),
     -------
     Polyhedron
     """
+    import trimesh.creation
+
     mesh = trimesh.creation.box(extents=extents)
     mesh.apply_transform(object_transform(position, rotate))
     return polyhedron_from_trimesh(mesh, name, material, casts)
@@ -559,6 +568,8 @@ def make_grid_box(name: str, extents: Vec3, divisions: tuple[int, int, int], *,
     polys = inverse.reshape(-1)[np.concatenate(quads)]
     m = object_transform(position, rotate)
     verts = uniq @ m[:3, :3].T + m[:3, 3]
+    import trimesh
+
     tri = trimesh.Trimesh(verts, np.concatenate([polys[:, [0, 1, 2]], polys[:, [0, 2, 3]]]),
                           process=False)
     if not (tri.is_watertight and tri.is_winding_consistent and tri.volume > 0):
