@@ -284,23 +284,30 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
 
 
 def _count_polygons(prog) -> int:
+    """Polygons one frame hands to the pipeline, counted where the stream is decoded
+    (so polygons replayed from display objects, as the volume cache draws them, count
+    too)."""
+    import numpy as np
+
     from vgxsim import gl
+    from vgxsim.pipeline import decode
+    from vgxsim.stream.opcodes import P_KIND, PMV, POLYGON
 
     count = [0]
-    real = gl.bgnpolygon
-    import vgxsim.examples.heidmann1991 as ex
-    import vgxsim.shadow.program as program  # where the example's drawing code lives
+    real = decode.decode_stream
 
-    def counting():
-        count[0] += 1
-        real()
+    def counting(*args):
+        out = real(*args)
+        prims = out[4]
+        count[0] += int(np.count_nonzero(np.isin(prims[:, P_KIND], (POLYGON, PMV))))
+        return out
 
-    ex.bgnpolygon = program.bgnpolygon = counting
+    decode.decode_stream = counting
     try:
         prog.DrawFrame()
         gl.swapbuffers()
     finally:
-        ex.bgnpolygon = program.bgnpolygon = real
+        decode.decode_stream = real
     return count[0]
 
 
