@@ -659,7 +659,14 @@ def test_tile_order_reads_square_tiles_in_row_order():
 def test_signed_box_test_equals_the_general_one():
     """The per-ray sign choice of slab planes (kernels/raycast.py _box_signed) gives
     the general test's answer and entry parameter, infinite bounds included."""
-    from vgxsim.kernels.raycast import _box, _box_signed, _ray_boxes
+    import numba
+
+    from vgxsim.kernels.raycast import _box, _box_signed
+    from vgxsim.kernels.raycast import _ray_boxes as _helper
+
+    @numba.njit(cache=False)
+    def _ray_boxes(dx, dy, dz):  # a kernel helper is called from compiled code only
+        return _helper(dx, dy, dz)
 
     rng = np.random.default_rng(4)
     nodes = np.zeros((400, 8))
