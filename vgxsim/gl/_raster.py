@@ -189,9 +189,17 @@ def stencil(*args, **kwargs) -> None:
             and 0 <= pass_ <= 5 and 0 <= zpass <= 5):
         # Fast path (ints or GL tokens, valid values): the checks below, inlined.
         regs = ctx.raster
-        # tuple.__new__: the NamedTuple's own __new__ costs about 1 us.
-        regs.stencil = _new_tuple(StencilRegister,
-                                  (True, ref & _U32, func, mask & _U32, fail, pass_, zpass))
+        # One register object per distinct valid argument tuple (the 1991 shadow faces
+        # alternate between two): a dict hit costs less than building the tuple
+        # (checked above, so only valid int arguments are ever keys).
+        reg = regs.stencil_memo.get(args)
+        if reg is None:
+            if len(regs.stencil_memo) > 4096:
+                regs.stencil_memo.clear()
+            # tuple.__new__: the NamedTuple's own __new__ costs about 1 us.
+            reg = regs.stencil_memo[args] = _new_tuple(
+                StencilRegister, (True, ref & _U32, func, mask & _U32, fail, pass_, zpass))
+        regs.stencil = reg
         regs._snapshot = None
         return
     on = as_int("stencil", args, "enable", enable) != 0

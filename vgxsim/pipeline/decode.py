@@ -18,6 +18,7 @@ import numpy as np
 from vgxsim.geometry.transform import apply
 from vgxsim.kernels.decode import assemble_triangles, decode_stream
 from vgxsim.kernels.texture import decode_texcoords
+from vgxsim.state.raster import needs_colour
 from vgxsim.stream.opcodes import (
     CLEAR_KIND,
     CLOSEDLINE,
@@ -27,6 +28,7 @@ from vgxsim.stream.opcodes import (
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
+    P_V1,
     PMV,
     POINT,
     POLYGON,
@@ -114,31 +116,41 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears
     # differ at most in fragment state) and one lmcolor_set.
     brk = np.ones(npr, bool)
     brk[1:] = ~(tri[1:] & tri[:-1] & (key[1:] == key[:-1]))
-    starts = np.flatnonzero(brk).tolist()
+    first = np.flatnonzero(brk)
+    starts = first.tolist()
     ends = starts[1:] + [npr]
-    rows = prims.tolist()
+    # Per group, as lists (one conversion, not one numpy call per group): its first
+    # row, the end of its last primitive's vertices, whether it is triangles and
+    # whether all its primitives share the first one's record.
+    stops = np.append(first[1:], npr)
+    heads = prims[first, :7].tolist()
+    last_v1 = prims[stops - 1, P_V1].tolist()
+    tri_l = tri[first].tolist()
+    head_state = np.repeat(prims[first, P_STATE], stops - first)
+    one_record = np.logical_and.reduceat(prims[:, P_STATE] == head_state, first).tolist()
     # Drawn in order below; collected first so that lighting runs once over the lit
     # groups that share lights (draw.shade_groups).
     jobs: list = []
     lit_groups: list = []
-    for a, b in zip(starts, ends, strict=True):
-        kind, v0, v1, si, lms = rows[a][0], rows[a][1], rows[b - 1][2], rows[a][3], rows[a][4]
+    for g, (a, b) in enumerate(zip(starts, ends, strict=True)):
+        head = heads[g]
+        kind, v0, v1, si, lms = head[0], head[1], last_v1[g], head[3], head[4]
         if kind == CLEAR_KIND:
-            jobs.append((_clear, (ctx, *clears[rows[a][P_CLEAR]]), {}))
+            jobs.append((_clear, (ctx, *clears[head[P_CLEAR]]), {}))
             continue
         if v1 == v0:
             continue  # bgn*/end* without vertices draws nothing
         state = records[si]
         sl = slice(v0, v1)
         lit = _lit(state, sent[sl])
-        if not tri[a]:
+        if not tri_l[g]:
             # Lines and points: one primitive per group (the line-style pattern
             # restarts at every bgnline).
             jobs.append((draw_arrays, (ctx, state, bool(lms), NAME_OF[kind], pos[sl], col[sl],
                                        nrm[sl], lit), {"private": True}))
             continue
         if state.concave or b - a == 1:
-            for r in rows[a:b]:
+            for r in prims[a:b, :7].tolist():
                 if r[2] == r[1]:
                     continue
                 ps = slice(r[1], r[2])
@@ -151,8 +163,8 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears
             continue
         tris, prov, tri_prim = _group_triangles(prims[a:b], v0, swaps)
         tri_states = None
-        if not (prims[a:b, P_STATE] == si).all():  # one record: one raster (most groups)
-            recs = [records[r[3]] for r in rows[a:b]]
+        if not one_record[g]:  # one record: one raster (most groups)
+            recs = [records[r] for r in prims[a:b, P_STATE].tolist()]
             if any(r.raster is not state.raster for r in recs):
                 tri_states = (recs, tri_prim)  # one entry per primitive of the group
         normals = nrm[sl] if state.lighting is not None else None
@@ -174,8 +186,6 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears
 
 
 def _wants_colour(state) -> bool:
-    from vgxsim.state.raster import needs_colour
-
     return needs_colour(state.raster)
 
 

@@ -211,6 +211,7 @@ class StateTable:
         self.geometry: list[int] = []
         self._last: DrawState | None = None
         self._index: dict[tuple, int] = {}
+        self._lighting_memo: tuple | None = None
 
     def intern(self, ctx) -> int:
         """Index of the window's current draw state (one record per distinct value:
@@ -225,18 +226,35 @@ class StateTable:
         idx = self._index.get(key)
         if idx is not None and self.records[idx].raster is rs and self.records[idx].mvp is mvp:
             return idx
-        idx = self._new(ctx)
+        idx = self._new(ctx, rs, mvp)
         self._index[key] = idx
         return idx
 
-    def _new(self, ctx) -> int:
-        rec = DrawState(ctx.raster.snapshot(), ctx.matrices.mvp(), ctx.raster.viewport,
-                        ctx.depth_range, lighting_state(ctx), int(ctx.lmcolor_mode),
+    def _lighting(self, ctx) -> LightingState | None:
+        """:func:`lighting_state`, made once per lighting serial and modelview: the
+        faces of a shadow volume differ in stencil state only, and one LightingState
+        object lets :func:`same_lighting` answer by identity.  Every lighting call
+        bumps the serial; a new modelview is a new object, and so is its normal
+        matrix (the parts are replaced, never mutated)."""
+        if not ctx.lighting_active() or not ctx.config.rgb:
+            return None
+        mv, nm = ctx.matrices.modelview_matrix(), ctx.matrices.normal_matrix()
+        memo = self._lighting_memo
+        if (memo is not None and memo[0] == ctx.lighting_serial and memo[1] is mv
+                and memo[2] is nm):
+            return memo[3]
+        ls = lighting_state(ctx)
+        self._lighting_memo = (ctx.lighting_serial, mv, nm, ls)
+        return ls
+
+    def _new(self, ctx, rs: RasterState, mvp: np.ndarray) -> int:
+        rec = DrawState(rs, mvp, ctx.raster.viewport,
+                        ctx.depth_range, self._lighting(ctx), int(ctx.lmcolor_mode),
                         bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
                         depthcue_state(ctx),
                         bool(getattr(ctx, "resetls", True)),
                         bool(getattr(ctx, "lsbackup", False)),
-                        texgen_eye(ctx, ctx.raster.snapshot()))
+                        texgen_eye(ctx, rs))
         last = self._last
         if last is not None and same_state(last, rec):
             return len(self.records) - 1
@@ -253,3 +271,4 @@ class StateTable:
         self.geometry.clear()
         self._index.clear()
         self._last = None
+        self._lighting_memo = None

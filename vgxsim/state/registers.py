@@ -67,6 +67,8 @@ class RasterRegisters:
         # same RasterState objects back, which the command stream compares by
         # identity.
         self._memo: dict[tuple, RasterState] = {}
+        # stencil(3G)'s fast path: the StencilRegister of each valid argument tuple.
+        self.stencil_memo: dict[tuple, StencilRegister] = {}
 
     def set(self, **values) -> None:
         """Store register values and mark the snapshot dirty."""
