@@ -38,6 +38,34 @@ def _edge(xi, yi, xj, yj, t_edge, n, e):
 DEAD_Y0 = 1 << 40  # first row of a dead record: beyond any band
 
 
+@inline_ir
+def canonical_order(xf, yf, a, b, c):
+    """Vertex indices a, b, c in ascending (y, x) of their fixed-point positions
+    (inlined at the IR level: it takes the position arrays, once per triangle).
+
+    The first is the origin of every interpolation plane (depth, colour here,
+    texture coordinates in kernels/texture.py), so the set-up and the texture stage
+    take it from this one rule."""
+    if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
+        a, b = b, a
+    if (yf[c] < yf[b]) or (yf[c] == yf[b] and xf[c] < xf[b]):
+        b, c = c, b
+        if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
+            a, b = b, a
+    return a, b, c
+
+
+@inline
+def plane_frame(ax, ay, bx, by, cx, cy, det2):
+    """The frame a plane is solved in, in pixels: (x0, y0) the canonical first vertex,
+    the offsets of the other two from it and the determinant (``det2`` is twice the
+    signed area in fixed point, ONE units a pixel)."""
+    fx0 = ax / ONE
+    fy0 = ay / ONE
+    return (fx0, fy0, bx / ONE - fx0, by / ONE - fy0, cx / ONE - fx0, cy / ONE - fy0,
+            det2 / (ONE * ONE))
+
+
 @inline
 def _dead(t_box, t_state, n, state):
     t_box[n, 0] = 1
@@ -129,14 +157,7 @@ def _setup_one(xf, yf, zw, col, tris, src, flat_col, state, cull, flat, want_col
             or (area2 > 0 and (cull & CULL_FRONT) != 0)):
         _dead(t_box, t_state, n, state)
         return
-    # Canonical order: ascending (y, x).
-    a, b, c = i0, i1, i2
-    if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
-        a, b = b, a
-    if (yf[c] < yf[b]) or (yf[c] == yf[b] and xf[c] < xf[b]):
-        b, c = c, b
-        if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
-            a, b = b, a
+    a, b, c = canonical_order(xf, yf, i0, i1, i2)
     ax, ay, bx, by, cx, cy = xf[a], yf[a], xf[b], yf[b], xf[c], yf[c]
     det2 = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
     # Edges of the counter-clockwise version.
@@ -157,13 +178,7 @@ def _setup_one(xf, yf, zw, col, tris, src, flat_col, state, cull, flat, want_col
     if t_box[n, 0] > t_box[n, 1] or t_box[n, 2] > t_box[n, 3]:
         _dead(t_box, t_state, n, state)  # no pixel centre inside the bounding box
         return
-    fx0 = ax / ONE
-    fy0 = ay / ONE
-    dxb = bx / ONE - fx0
-    dyb = by / ONE - fy0
-    dxc = cx / ONE - fx0
-    dyc = cy / ONE - fy0
-    det = det2 / (ONE * ONE)
+    fx0, fy0, dxb, dyb, dxc, dyc, det = plane_frame(ax, ay, bx, by, cx, cy, det2)
     za, zb, zc = zw[a], zw[b], zw[c]
     t_z[n, 0] = za
     t_z[n, 1] = fx0

@@ -35,9 +35,9 @@ from vgxsim.state.codes import (
 )
 from vgxsim.stream.opcodes import CM, CRAW, CSKIP, SYNC, C, N, T, V
 
-from .clip import ONE
 from .decode import _int_payload
 from .options import callee, inline, jit
+from .setup import canonical_order, plane_frame
 
 
 @jit
@@ -58,13 +58,7 @@ def setup_texture_planes(xf, yf, stq, tris, t_tex, offset):
     """
     for t in range(tris.shape[0]):
         n = offset + t
-        a, b, c = tris[t, 0], tris[t, 1], tris[t, 2]
-        if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
-            a, b = b, a
-        if (yf[c] < yf[b]) or (yf[c] == yf[b] and xf[c] < xf[b]):
-            b, c = c, b
-            if (yf[b] < yf[a]) or (yf[b] == yf[a] and xf[b] < xf[a]):
-                a, b = b, a
+        a, b, c = canonical_order(xf, yf, tris[t, 0], tris[t, 1], tris[t, 2])
         ax, ay, bx, by, cx, cy = xf[a], yf[a], xf[b], yf[b], xf[c], yf[c]
         det2 = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
         if det2 == 0:
@@ -73,13 +67,7 @@ def setup_texture_planes(xf, yf, stq, tris, t_tex, offset):
                 t_tex[n, k, 1] = 0.0
                 t_tex[n, k, 2] = 0.0
             continue
-        fx0 = ax / ONE
-        fy0 = ay / ONE
-        dxb = bx / ONE - fx0
-        dyb = by / ONE - fy0
-        dxc = cx / ONE - fx0
-        dyc = cy / ONE - fy0
-        det = det2 / (ONE * ONE)
+        fx0, fy0, dxb, dyb, dxc, dyc, det = plane_frame(ax, ay, bx, by, cx, cy, det2)
         for k in range(3):
             va = stq[a, k]
             vb = stq[b, k]
