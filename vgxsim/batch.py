@@ -275,23 +275,40 @@ class CommandBatch:
         nt = tris.shape[0]
         if nt == 0:
             return 0
-        s = self.state_index(rs)
+        # One set-up kernel for one state and for many (setup_triangles_states, with
+        # the state and cull repeated): the first image then compiles one, not two.
+        idx = np.full(nt, self.state_index(rs), np.int64)
+        culls = np.full(nt, rs.cull, np.int64)
+        start = self._set_up(xf, yf, zw, col, tris, src, flat_col, rs.shademodel, idx, culls,
+                             tex)
+        refs = np.arange(start, self.ntris, dtype=np.int64)
+        # Bin by the rows the triangle can touch inside the raster rectangle, so bands
+        # outside the scissor (a light's scissor rectangle) never see it.
+        box = self.t_box[start:self.ntris]
+        sx0, sx1, sy0, sy1 = rs.scissor
+        y0 = np.maximum(box[:, 2], sy0)
+        y1 = np.minimum(box[:, 3], sy1)
+        y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0) | (box[:, 0] > box[:, 1])] = -1
+        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
+        self._maybe_flush()
+        return self.ntris - start
+
+    def _set_up(self, xf, yf, zw, col, tris, src, flat_col, shademodel, idx, culls,
+                tex) -> int:
+        """Set up triangles ``tris`` into new record slots (state table index ``idx``
+        and cull mode ``culls`` per triangle) and their texture planes; returns the
+        first slot.  Every triangle owns its slot (dead records for culled ones), so
+        chunks of one call set up in parallel and the drawing order is unchanged."""
+        nt = tris.shape[0]
         want_colour = col is not None or flat_col is not None
         colv = col if col is not None else np.zeros((1, 4))
         flatv = flat_col if flat_col is not None else np.zeros((1, 4))
-        flat = rs.shademodel == FLAT or col is None
-        end = self.ntris + nt
-        self._grow_records(end)
+        flat = shademodel == FLAT or col is None
         start = self.ntris
+        self._grow_records(start + nt)
         out = self._records()
-        # One set-up kernel for one state and for many (setup_triangles_states, with
-        # the state and cull repeated): the first image then compiles one, not two.
-        idx = np.full(nt, s, np.int64)
-        culls = np.full(nt, rs.cull, np.int64)
         nthreads = threads.get_threads()
         if nthreads > 1 and nt >= PARALLEL_SETUP:
-            # Every triangle owns its slot (dead records for culled ones), so chunks
-            # of one call set up in parallel and the drawing order is unchanged.
             cuts = np.linspace(0, nt, nthreads + 1).astype(np.int64)
             pool = threads.pool(nthreads)
             futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, tris[a:b],
@@ -305,17 +322,7 @@ class CommandBatch:
             self.ntris = setup_triangles_states(xf, yf, zw, colv, tris, src, flatv, idx, culls,
                                                 flat, want_colour, *out, start)
         self._texture_planes(xf, yf, tex, tris, start)
-        refs = np.arange(start, self.ntris, dtype=np.int64)
-        # Bin by the rows the triangle can touch inside the raster rectangle, so bands
-        # outside the scissor (a light's scissor rectangle) never see it.
-        box = self.t_box[start:self.ntris]
-        sx0, sx1, sy0, sy1 = rs.scissor
-        y0 = np.maximum(box[:, 2], sy0)
-        y1 = np.minimum(box[:, 3], sy1)
-        y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0) | (box[:, 0] > box[:, 1])] = -1
-        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
-        self._maybe_flush()
-        return self.ntris - start
+        return start
 
     def _texture_planes(self, xf, yf, tex, tris, start) -> None:
         """Texture-coordinate planes of the triangles just set up at ``start``."""
@@ -361,17 +368,8 @@ class CommandBatch:
         table = np.array(rows, np.int64).reshape(-1, 2)
         idx = np.ascontiguousarray(table[tri_state, 0])
         culls = np.ascontiguousarray(table[tri_state, 1])
-        want_colour = col is not None or flat_col is not None
-        colv = col if col is not None else np.zeros((1, 4))
-        flatv = flat_col if flat_col is not None else np.zeros((1, 4))
-        flat = rs.shademodel == FLAT or col is None
-        end = self.ntris + nt
-        self._grow_records(end)
-        start = self.ntris
-        self.ntris = setup_triangles_states(
-            xf, yf, zw, colv, tris, src, flatv, idx, culls, flat, want_colour,
-            self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state, start)
-        self._texture_planes(xf, yf, tex, tris, start)
+        start = self._set_up(xf, yf, zw, col, tris, src, flat_col, rs.shademodel, idx, culls,
+                             tex)
         refs = np.arange(start, self.ntris, dtype=np.int64)
         self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
                         self.t_box[start:self.ntris, 3])
