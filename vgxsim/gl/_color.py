@@ -28,6 +28,7 @@ from vgxsim import GL
 from vgxsim.state import colormap
 
 from ._core import (
+    _NO,
     GLUsageError,
     GLValueError,
     as_float,
@@ -35,6 +36,7 @@ from ._core import (
     current,
     describe,
     flat_numbers,
+    given,
     gl_function,
     record_or_refuse,
     session,
@@ -148,12 +150,18 @@ def _colour_call(name: str, rgba_of, doc: str):
     """An RGB colour call from the function giving its RGBA (also what display objects
     record)."""
 
-    def body(*args, **kwargs) -> None:
+    def general(*args, **kwargs) -> None:
         if kwargs or session.recording is not None:
             return record_or_refuse(body, args, kwargs)
-        ctx = session.windows.get(session.current)
-        if ctx is None:
-            ctx = current(name, args)
+        ctx = current(name, args)
+        if not ctx.config.rgb:
+            _need_rgb(ctx, name, args)
+        _set_rgba(ctx, rgba_of(args))
+
+    def body(*args, **kwargs) -> None:
+        ctx = session.imm
+        if ctx is None or kwargs:
+            return general(*args, **kwargs)
         if not ctx.config.rgb:
             _need_rgb(ctx, name, args)
         _set_rgba(ctx, rgba_of(args))
@@ -162,11 +170,42 @@ def _colour_call(name: str, rgba_of, doc: str):
     body.__doc__ = doc
     call = gl_function(binds=(0, math.inf, ()))(body)
     call.stream_rgba = rgba_of
+    call.general = general
     return call
 
 
-c3f = _colour_call("c3f", _float_rgba("c3f", 3),
-                   """Current colour from 3 floats in [0, 1]: ``c3f((r, g, b))`` or
+def _c3f_call(doc: str):
+    """c3f: :func:`_colour_call` with its valid path inlined (three floats already in
+    [0, 1], separately or as one tuple or list, into an RGB window)."""
+    rgba_of = _float_rgba("c3f", 3)
+    slow = _colour_call("c3f", rgba_of, doc)
+    general = slow.general
+
+    def c3f(r=_NO, g=_NO, b=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        p = None
+        if b is _NO and g is _NO and (type(r) is tuple or type(r) is list) and len(r) == 3:
+            p = r
+            r, g, b = p
+        if (ctx is None or kw or more
+                or type(r) is not float or type(g) is not float or type(b) is not float
+                or not (0.0 <= r <= 1.0 and 0.0 <= g <= 1.0 and 0.0 <= b <= 1.0)
+                or not ctx.config.rgb):
+            return general(*((p,) if p is not None else given((r, g, b), more)), **kw)
+        bound = ctx.bound
+        if bound["material"] != 0 and bound["lmodel"] != 0:  # Context.lighting_active
+            _set_rgba(ctx, (r, g, b, 1.0))  # lmcolor(3G) decides
+            return
+        ctx.colour = (r, g, b, 1.0)
+        ctx.last_sent = "colour"
+
+    c3f.__doc__ = doc
+    call = gl_function(binds=(0, math.inf, ()))(c3f)
+    call.stream_rgba = rgba_of
+    return call
+
+
+c3f = _c3f_call("""Current colour from 3 floats in [0, 1]: ``c3f((r, g, b))`` or
     ``c3f(r, g, b)``; alpha 1.0, values outside [0, 1] saturate.""")
 c4f = _colour_call("c4f", _float_rgba("c4f", 4),
                    "Current colour from 4 floats in [0, 1] (r, g, b, a); values saturate.")
@@ -180,27 +219,42 @@ c4s = _colour_call("c4s", _int_rgba("c4s", 4),
                    "As :func:`c4i` (the C form takes shorts).")
 
 
+def _general_cpack(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None or len(args) != 1:
+        return record_or_refuse(cpack, args, kwargs)
+    ctx = current("cpack", args)
+    if not ctx.config.rgb:
+        _need_rgb(ctx, "cpack", args)
+    _set_rgba(ctx, _cpack_rgba(args))
+
+
+#: cpack's colours by packed word: one RGBA tuple per distinct word (interned, so a
+#: repeated cpack leaves the current colour the same object and the command stream
+#: sends no new SYNC for it); bounded, emptied when full.
+_PACKED: dict[int, tuple] = {}
+
+
 @gl_function(binds=(1, 1, ("int",)))
-def cpack(*args, **kwargs) -> None:
+def cpack(abgr=_NO, /, *more, **kw) -> None:
     """cpack(abgr): set the current colour from one packed word 0xAABBGGRR (cpack(3G)).
 
     Red is the low byte; alpha comes from the high byte, so ``cpack(0xFF)`` is red
     with alpha 0.
     """
-    if kwargs or session.recording is not None or len(args) != 1:
-        return record_or_refuse(cpack, args, kwargs)
-    abgr = args[0]
-    ctx = session.windows.get(session.current)
-    if ctx is not None and type(abgr) is int and ctx.config.rgb:
-        # Fast path (a plain int in RGB mode): _cpack_rgba inlined.
-        w = abgr & 0xFFFFFFFF  # C unsigned long
-        _set_rgba(ctx, (_BYTE[w & 0xFF], _BYTE[(w >> 8) & 0xFF], _BYTE[(w >> 16) & 0xFF],
-                        _BYTE[w >> 24]))
+    ctx = session.imm
+    if ctx is None or kw or more or type(abgr) is not int or not ctx.config.rgb:
+        return _general_cpack(*given((abgr,), more), **kw)
+    rgba = _PACKED.get(abgr)
+    if rgba is None:
+        if len(_PACKED) >= 4096:
+            _PACKED.clear()
+        rgba = _PACKED[abgr] = _cpack_rgba((abgr,))
+    bound = ctx.bound
+    if bound["material"] != 0 and bound["lmodel"] != 0:  # Context.lighting_active
+        _set_rgba(ctx, rgba)  # lmcolor(3G) decides
         return
-    ctx = current("cpack", args)
-    if not ctx.config.rgb:
-        _need_rgb(ctx, "cpack", args)
-    _set_rgba(ctx, _cpack_rgba(args))
+    ctx.colour = rgba
+    ctx.last_sent = "colour"
 
 
 cpack.stream_rgba = _cpack_rgba

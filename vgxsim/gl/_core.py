@@ -40,6 +40,18 @@ class GLTypeError(GLError, TypeError):
     """An argument of the wrong Python type (e.g. a float Angle)."""
 
 
+#: Marks a positional parameter the caller did not pass (the fast calls take
+#: ``(x=_NO, y=_NO, z=_NO, /, *more, **kw)`` instead of ``*args``: no tuple is built).
+_NO = object()
+
+
+def given(slots: tuple, more: tuple) -> tuple:
+    """The positional arguments a fast call ``f(a=_NO, b=_NO, /, *more)`` got (``slots``:
+    its named parameters), as the tuple ``*args`` would have held, for its general
+    path and its errors (the slots fill from the left, so the unpassed ones trail)."""
+    return tuple(a for a in slots if a is not _NO) + more
+
+
 def describe(name: str, args: tuple) -> str:
     """``name(arg, ...)`` with token names where the argument is a token."""
     parts = []
@@ -69,18 +81,119 @@ class Window:
     shown: object = None
 
 
+#: Fast path switch (issue 6: the common calls under 1 us).  True: the common calls
+#: (v3f, n3f, c3f, cpack, bgn*/end*, stencil, lmbind, zwritemask, wmpack, the matrix
+#: stack, callobj) find the window through :attr:`_Session.imm` and take a valid path
+#: of a few plain-value checks; anything else -- recording, a keyword, a wrong count
+#: or type, an out-of-range value -- goes to the call's general path, which validates
+#: and raises as it always did.  False: every call takes its general path (the planes
+#: are the same either way, tests/gl/test_fast_calls.py).  Call
+#: ``session.refresh()`` after changing it.
+FAST_CALLS = True
+
+
+class _Windows(dict):
+    """The session's windows by gid: a dict that tells its session when it changes,
+    so the session's cached current window (:attr:`_Session.imm`) never goes stale,
+    whoever installs or removes a window (winopen, winclose, tests)."""
+
+    __slots__ = ("_changed",)
+
+    def __init__(self, changed, *args):
+        super().__init__(*args)
+        self._changed = changed
+
+    def __setitem__(self, key, value):
+        super().__setitem__(key, value)
+        self._changed()
+
+    def __delitem__(self, key):
+        super().__delitem__(key)
+        self._changed()
+
+    def pop(self, *args):
+        out = super().pop(*args)
+        self._changed()
+        return out
+
+    def popitem(self):
+        out = super().popitem()
+        self._changed()
+        return out
+
+    def clear(self):
+        super().clear()
+        self._changed()
+
+    def update(self, *args, **kwargs):
+        super().update(*args, **kwargs)
+        self._changed()
+
+    def setdefault(self, key, default=None):
+        out = super().setdefault(key, default)
+        self._changed()
+        return out
+
+
 class _Session:
     """Process-wide IRIS GL state: windows, the current one, window preferences.
 
     The one owner of the gl layer's process state: :meth:`reset` clears all of it
-    (no gl or events module keeps state of its own)."""
+    (no gl or events module keeps state of its own).
+
+    ``imm`` is the current window's Context while calls execute in immediate mode
+    (a window is current, no display object is being recorded and
+    :data:`FAST_CALLS` is on), else None: the common calls read this one attribute
+    instead of ``recording``, ``windows`` and ``current``.  Assigning ``current``,
+    ``recording`` or ``windows``, or changing ``windows``, recomputes it.
+    """
 
     def __init__(self):
+        self.imm = None
+        self._current: int | None = None
+        self._recording = None
+        self._windows = _Windows(self.refresh)
         self.reset()
 
+    def refresh(self) -> None:
+        """Recompute :attr:`imm` (see the class docstring)."""
+        self.imm = (self._windows.get(self._current)
+                    if FAST_CALLS and self._recording is None else None)
+
+    @property
+    def current(self) -> int | None:
+        """The gid of the current window (winset(3G)), or None."""
+        return self._current
+
+    @current.setter
+    def current(self, gid: int | None) -> None:
+        self._current = gid
+        self.refresh()
+
+    @property
+    def recording(self):
+        """What recordable calls append (call, args) to while makeobj is open: the
+        object's recorder (gl/_objects.py), or None in immediate mode."""
+        return self._recording
+
+    @recording.setter
+    def recording(self, recorder) -> None:
+        self._recording = recorder
+        self.refresh()
+
+    @property
+    def windows(self) -> dict[int, object]:
+        """The open windows' Contexts by gid."""
+        return self._windows
+
+    @windows.setter
+    def windows(self, windows: dict) -> None:
+        self._windows = _Windows(self.refresh, windows)
+        self.refresh()
+
     def reset(self) -> None:
-        self.windows: dict[int, object] = {}
-        self.current: int | None = None
+        self.windows = {}
+        self.current = None
         self.next_gid = 1
         self.prefsize: tuple[int, int] | None = None
         self.prefposition: tuple[int, int, int, int] | None = None
@@ -92,8 +205,6 @@ class _Session:
         self.objects: dict[int, object] = {}  # display objects (gl/_objects.py), by name
         self.next_object = 1  # where genobj starts looking
         self.open_object: int | None = None  # makeobj in progress
-        # What recordable calls append (call, args) to while makeobj is open: the
-        # object's recorder (gl/_objects.py), or None in immediate mode.
         self.recording = None
         self.topics: dict[str, object] = {}  # per-topic state, see topic_state()
         # The Window record of each Context (window_of()); weak, so a Context installed
@@ -130,9 +241,9 @@ def window_of(ctx) -> Window:
 
 def current(name: str, args: tuple = ()):
     """The current window's Context; GLUsageError before winopen."""
-    if session.current is None:
+    if session._current is None:
         raise GLUsageError(f"{describe(name, args)}: no window is open (call winopen first)")
-    return session.windows[session.current]
+    return session._windows[session._current]
 
 
 #: The integers any IRIS GL argument can hold: a 32-bit ``long`` or ``unsigned long``
@@ -330,8 +441,8 @@ def gl_function(record: bool = True, binds: tuple | None = None):
         def call(*args, **kwargs):
             if kwargs or not lo <= len(args) <= hi:
                 raise bind_error(call, args, kwargs)
-            if record and session.recording is not None:
-                return session.recording.append((call, args))
+            if record and session._recording is not None:
+                return session._recording.append((call, args))
             return func(*args)
 
         call.__name__ = func.__name__

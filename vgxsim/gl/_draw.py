@@ -45,6 +45,7 @@ from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, T, V
 from vgxsim.stream.recorder import MAX_STREAM_OPS
 
 from ._core import (
+    _NO,
     GLTypeError,
     GLUsageError,
     GLValueError,
@@ -53,6 +54,7 @@ from ._core import (
     current,
     describe,
     flat_numbers,
+    given,
     gl_function,
     record_or_refuse,
     session,
@@ -128,14 +130,21 @@ def _xyzw(vals: tuple[float, ...]) -> tuple[float, float, float, float]:
 
 
 # -- appending to the window's stream -------------------------------------------------
+def same_state(ctx, st) -> bool:
+    """Whether the stream's last STATE op still describes the window's draw state
+    (identity of the raster snapshot, the composite matrix and the depth range, which
+    are replaced, never mutated, on change; equality of the serials)."""
+    snap = ctx.raster._snapshot
+    return (snap is not None and snap is st.raster and ctx.matrices._mvp is st.mvp
+            and ctx.depth_range is st.depth and ctx.lighting_serial == st.lighting_serial
+            and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial)
+
+
 def _restate(ctx, st) -> None:
     """Record the window's draw state (a STATE op) if it changed since the last one."""
-    regs = ctx.raster
-    if (regs._snapshot is not None and regs._snapshot is st.raster
-            and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
-            and ctx.lighting_serial == st.lighting_serial and ctx.concave is st.concave
-            and ctx.vertex_serial == st.vertex_serial):
+    if same_state(ctx, st):
         return
+    regs = ctx.raster
     idx = ctx.states.intern(ctx)
     st.raster = regs._snapshot
     st.mvp = ctx.matrices._mvp
@@ -274,18 +283,25 @@ def _bgn(prim: str):
         _no_args(name, args)
         return [("bgn", prim)]
 
-    def call(*args, **kwargs):
+    def general(*args, **kwargs):
         if session.recording is not None or kwargs:
             return record_or_refuse(call, args, kwargs)
-        ctx = session.windows.get(session.current)
-        if ctx is None or ctx.prim is not None:
-            begin(current(name, args), name, args, prim)  # raises
+        begin(current(name, args), name, args, prim)
+
+    def call(*args, **kwargs):
+        ctx = session.imm
+        if ctx is None or kwargs or ctx.prim is not None:
+            return general(*args, **kwargs)
         st = ctx.stream
         ops = st.ops
         if len(ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
-            drain(ctx)
-            ops = st.ops
-        _restate(ctx, st)
+            return general(*args)
+        snap = ctx.raster._snapshot  # same_state(ctx, st), inlined (one call less)
+        if not (snap is not None and snap is st.raster and ctx.matrices._mvp is st.mvp
+                and ctx.depth_range is st.depth
+                and ctx.lighting_serial == st.lighting_serial
+                and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
+            _restate(ctx, st)
         ctx.prim = prim
         st.open_ops = st.parts_ops + len(ops)
         st.open_fl = st.parts_fl + len(st.fl)
@@ -307,13 +323,16 @@ def _end(prim: str):
         _no_args(name, args)
         return [("end", prim)]
 
-    def call(*args, **kwargs):
+    def general(*args, **kwargs):
         if session.recording is not None or kwargs:
             return record_or_refuse(call, args, kwargs)
-        ctx = session.windows.get(session.current)
-        if ctx is None or ctx.prim != prim or drains:
-            end(current(name, args), name, args, prim)
-            return
+        end(current(name, args), name, args, prim)
+
+    def call(*args, **kwargs):
+        ctx = session.imm
+        # (ctx.prim holds the very string begin stored: identity is equality here.)
+        if ctx is None or kwargs or ctx.prim is not prim or drains:
+            return general(*args, **kwargs)
         ctx.prim = None
         ctx.stream.ops.append(END)
 
@@ -389,17 +408,12 @@ def _vertex_call(n: int, suffix: str):
     name = f"v{n}{suffix}"
     integer = suffix in ("s", "i")
     tail = _W[n]
+    fast = _never if integer else _PLAIN[n]
 
     def parse(args: tuple) -> list:
         return [("v", _xyzw(coords(name, args, n, integer)))]
 
-    def call(*args, **kwargs):
-        rec = session.recording
-        if rec is not None or kwargs:
-            return record_or_refuse(call, args, kwargs)
-        ctx = session.windows.get(session.current)
-        if ctx is None or ctx.prim is None:
-            _outside(name, args, current(name, args).prim, None)
+    def emit(ctx, args: tuple) -> None:
         seq = args
         if len(args) == 1:
             a0 = args[0]
@@ -418,39 +432,46 @@ def _vertex_call(n: int, suffix: str):
         if tail:
             fl.extend(tail)
 
-    def call3(*args, **kwargs):
-        # call for v3f/v3d with the fast path inlined (the hottest call there is).
+    def general(*args, **kwargs):
         if session.recording is not None or kwargs:
             return record_or_refuse(call, args, kwargs)
-        ctx = session.windows.get(session.current)
-        if ctx is None or ctx.prim is None:
-            _outside(name, args, current(name, args).prim, None)
-        seq = args
-        if len(args) == 1:
-            a0 = args[0]
-            if type(a0) is tuple or type(a0) is list:
-                seq = a0
-            elif type(a0) is np.ndarray and a0.ndim == 1:
-                seq = a0.tolist()
-        if len(seq) == 3:
-            x, y, z = seq
-            if not (type(x) is float and type(y) is float and type(z) is float
-                    and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
-                seq = coords(name, args, 3, False)
-        else:
-            seq = coords(name, args, 3, False)
+        ctx = current(name, args)
+        if ctx.prim is None:
+            _outside(name, args, None, None)
+        emit(ctx, args)
+
+    def call(*args, **kwargs):
+        ctx = session.imm
+        if ctx is None or kwargs or ctx.prim is None:
+            return general(*args, **kwargs)
+        emit(ctx, args)
+
+    def call3(x=_NO, y=_NO, z=_NO, /, *more, **kw):
+        # v3f/v3d, the hottest call there is: three finite floats, or one tuple or
+        # list of them, into an open primitive, with a SYNC only when the colour,
+        # normal or lit flag changed; everything else takes the general path.
+        ctx = session.imm
+        p = None
+        if z is _NO and y is _NO and (type(x) is tuple or type(x) is list) and len(x) == 3:
+            p = x
+            x, y, z = p
+        if (ctx is None or kw or more or ctx.prim is None
+                or type(x) is not float or type(y) is not float or type(z) is not float
+                or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):  # (x - x: NaN, inf)
+            return general(*((p,) if p is not None else given((x, y, z), more)), **kw)
         st = ctx.stream
         if (ctx.colour is not st.colour or ctx.normal is not st.normal
                 or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
             sync(ctx, st)
         st.ops.append(V)
         fl = st.fl
-        fl.extend(seq)
+        fl.append(x)
+        fl.append(y)
+        fl.append(z)
         fl.append(1.0)
 
     if n == 3 and not integer:
         call = call3  # noqa: F811 - the specialised form replaces the generic one
-    fast = _never if integer else _PLAIN[n]
     kind = "ints" if integer else "numbers"
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): a vertex from {n} {kind}, as {name}(x, ...) or "
@@ -469,13 +490,10 @@ def _normal_call(name: str, doc: str):
     def parse(args: tuple) -> list:
         return [("n", coords(name, args, 3))]
 
-    def call(*args, **kwargs):
-        rec = session.recording
-        if rec is not None or kwargs:
+    def general(*args, **kwargs):
+        if session.recording is not None or kwargs:
             return record_or_refuse(call, args, kwargs)
-        ctx = session.windows.get(session.current)
-        if ctx is None:
-            ctx = current(name, args)
+        ctx = current(name, args)
         seq = args
         if len(args) == 1:
             a0 = args[0]
@@ -486,6 +504,19 @@ def _normal_call(name: str, doc: str):
         if not _plain3(seq):
             seq = coords(name, args, 3)
         ctx.normal = seq  # a tuple of 3 floats, new at every call (the stream's sync)
+        ctx.last_sent = "normal"
+
+    def call(x=_NO, y=_NO, z=_NO, /, *more, **kw):
+        ctx = session.imm
+        p = None
+        if z is _NO and y is _NO and type(x) is tuple and len(x) == 3:
+            p = x  # the caller's tuple is the normal (tuples never change)
+            x, y, z = p
+        if (ctx is None or kw or more
+                or type(x) is not float or type(y) is not float or type(z) is not float
+                or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
+            return general(*((p,) if p is not None else given((x, y, z), more)), **kw)
+        ctx.normal = (x, y, z) if p is None else p  # new: the next vertex syncs
         ctx.last_sent = "normal"
 
     call.__name__ = call.__qualname__ = name

@@ -24,12 +24,14 @@ from vgxsim.lighting import LightingError
 from vgxsim.tokens import Token
 
 from ._core import (
+    _NO,
     GLTypeError,
     GLValueError,
     as_int,
     check_token,
     current,
     describe,
+    given,
     gl_function,
     record_or_refuse,
     session,
@@ -110,33 +112,10 @@ def lmdef(deftype: int, index: int, *rest) -> None:
         ctx.lmcolor_set = False  # the hardware material is reloaded
 
 
-@gl_function(binds=(2, 2, ("int", "int")))
-def lmbind(*args, **kwargs) -> None:
-    """lmbind(target, index): bind definition ``index`` to MATERIAL, BACKMATERIAL,
-    LIGHT0..LIGHT7 or LMODEL (lmbind(3G)); index 0 unbinds.  Binding an undefined
-    index is an error.
-
-    A light is transformed to eye space here, by the current modelview.
-    With a lighting model whose TWOSIDE is set, back-facing polygons are lit from
-    the back (flipped normal) with the BACKMATERIAL when one is bound, else with the
-    front material (lmdef(3G)).
-    """
+def _general_lmbind(*args, **kwargs) -> None:
     if kwargs or session.recording is not None or len(args) != 2:
         return record_or_refuse(lmbind, args, kwargs)
     target, index = args
-    ctx = session.windows.get(session.current)
-    # Fast path: a material or lighting-model token (int or GL token) and a plain int
-    # index in range, the checks below inlined; lights (which transform by the
-    # modelview) and everything else take the general path.
-    if ctx is not None and type(target) in _PLAIN_INTS and type(index) is int:
-        key = _BOUND_KEY.get(target)
-        if (key is not None and 0 <= index <= _SHORT_MAX
-                and (not index or ctx.lighting.is_defined(_TARGET_DEF[target][0], index))):
-            ctx.lighting_serial += 1  # the stream records the draw state anew
-            ctx.bound[key] = index
-            if key == "material":
-                ctx.lmcolor_set = False
-            return
     ctx = current("lmbind", args)
     ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
     t = as_int("lmbind", args, "target", target)
@@ -160,6 +139,34 @@ def lmbind(*args, **kwargs) -> None:
     ctx.bound[_BOUND_KEY[t]] = idx
     if t == _MATERIAL:
         ctx.lmcolor_set = False
+
+
+@gl_function(binds=(2, 2, ("int", "int")))
+def lmbind(target=_NO, index=_NO, /, *more, **kw) -> None:
+    """lmbind(target, index): bind definition ``index`` to MATERIAL, BACKMATERIAL,
+    LIGHT0..LIGHT7 or LMODEL (lmbind(3G)); index 0 unbinds.  Binding an undefined
+    index is an error.
+
+    A light is transformed to eye space here, by the current modelview.
+    With a lighting model whose TWOSIDE is set, back-facing polygons are lit from
+    the back (flipped normal) with the BACKMATERIAL when one is bound, else with the
+    front material (lmdef(3G)).
+    """
+    ctx = session.imm
+    # Valid path: a material or lighting-model token (int or GL token) and a plain int
+    # index in range that is defined (or 0); lights (which transform by the modelview)
+    # and everything else take the general path.
+    if (ctx is not None and not kw and not more and type(target) in _PLAIN_INTS
+            and type(index) is int and 0 <= index <= _SHORT_MAX):
+        key = _BOUND_KEY.get(target)
+        if key is not None and (not index or ctx.lighting.is_defined(_TARGET_DEF[target][0],
+                                                                       index)):
+            ctx.lighting_serial += 1  # the stream records the draw state anew
+            ctx.bound[key] = index
+            if key == "material":
+                ctx.lmcolor_set = False
+            return
+    _general_lmbind(*given((target, index), more), **kw)
 
 
 _MATERIAL = int(GL.MATERIAL)

@@ -23,6 +23,7 @@ from vgxsim.geometry import transform as T
 from vgxsim.state.matrices import STACK_DEPTH, MatrixModeError, MatrixStackError
 
 from ._core import (
+    _NO,
     GLTypeError,
     GLUsageError,
     GLValueError,
@@ -34,6 +35,7 @@ from ._core import (
     current,
     describe,
     flat_numbers,
+    given,
     gl_function,
     record_or_refuse,
     session,
@@ -241,24 +243,24 @@ def rot(*args) -> None:
     current(name, args).matrices.mult(T.rotation(a, axis))
 
 
-@gl_function(record=True, binds=(0, math.inf, ()))
-def translate(*args, **kwargs) -> None:
-    """translate(x, y, z): premultiply a translation."""
+def _general_translate(*args, **kwargs) -> None:
     if kwargs or session.recording is not None:
         return record_or_refuse(translate, args, kwargs)
-    if len(args) == 3:
-        x, y, z = args
-        # Fast path: three finite floats (x - x is 0.0 only for finite x).
-        if (type(x) is float and type(y) is float and type(z) is float
-                and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
-            ctx = session.windows.get(session.current)
-            if ctx is not None:
-                ctx.matrices.translate(x, y, z)
-                return
     name = "translate"
     v = _floats(name, args, ("x", "y", "z"))
     _finite(name, args, v)
     current(name, args).matrices.translate(*v)
+
+
+@gl_function(record=True, binds=(0, math.inf, ()))
+def translate(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
+    """translate(x, y, z): premultiply a translation."""
+    ctx = session.imm
+    # Valid path: three finite floats (x - x is 0.0 only for finite x).
+    if (ctx is None or kw or more or type(x) is not float or type(y) is not float
+            or type(z) is not float or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
+        return _general_translate(*given((x, y, z), more), **kw)
+    ctx.matrices.translate(x, y, z)
 
 
 @gl_function(record=True)
@@ -268,6 +270,24 @@ def scale(*args) -> None:
     v = _floats(name, args, ("x", "y", "z"))
     _finite(name, args, v)
     current(name, args).matrices.mult(T.scaling(*v))
+
+
+def _general_pushmatrix(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None:
+        return record_or_refuse(pushmatrix, args, kwargs)
+    if args:
+        _nargs("pushmatrix", args, 0)
+    _pushmatrix(current("pushmatrix", args), args)
+
+
+def _pushmatrix(ctx, args: tuple) -> None:
+    try:
+        ctx.matrices.push()
+    except MatrixModeError:
+        _not_stacked("pushmatrix", args, ctx)
+    except MatrixStackError:
+        raise GLUsageError(f"{describe('pushmatrix', args)}: matrix stack overflow "
+                           f"(MATRIXSTACKDEPTH is {STACK_DEPTH})") from None
 
 
 @gl_function(record=True, binds=(0, math.inf, ()))
@@ -282,33 +302,24 @@ def pushmatrix(*args, **kwargs) -> None:
     after its popmatrix; save the projection with getmatrix and restore it with
     loadmatrix instead.
     """
-    if kwargs or session.recording is not None:
-        return record_or_refuse(pushmatrix, args, kwargs)
-    if args:
-        _nargs("pushmatrix", args, 0)
-    ctx = session.windows.get(session.current)
-    if ctx is None:
-        ctx = current("pushmatrix", args)
+    ctx = session.imm
+    if ctx is None or args or kwargs:
+        return _general_pushmatrix(*args, **kwargs)
     try:
         ctx.matrices.push()
-    except MatrixModeError:
-        _not_stacked("pushmatrix", args, ctx)
-    except MatrixStackError:
-        raise GLUsageError(f"{describe('pushmatrix', args)}: matrix stack overflow "
-                           f"(MATRIXSTACKDEPTH is {STACK_DEPTH})") from None
+    except (MatrixModeError, MatrixStackError):
+        _pushmatrix(ctx, args)  # push fails again before changing anything: the GLUsageError
 
 
-@gl_function(record=True, binds=(0, math.inf, ()))
-def popmatrix(*args, **kwargs) -> None:
-    """popmatrix(): discard the top of the matrix stack; GLUsageError in MPROJECTION
-    and MTEXTURE, whose matrices are not stacked (see :func:`pushmatrix`)."""
+def _general_popmatrix(*args, **kwargs) -> None:
     if kwargs or session.recording is not None:
         return record_or_refuse(popmatrix, args, kwargs)
     if args:
         _nargs("popmatrix", args, 0)
-    ctx = session.windows.get(session.current)
-    if ctx is None:
-        ctx = current("popmatrix", args)
+    _popmatrix(current("popmatrix", args), args)
+
+
+def _popmatrix(ctx, args: tuple) -> None:
     try:
         ctx.matrices.pop()
     except MatrixModeError:
@@ -316,6 +327,19 @@ def popmatrix(*args, **kwargs) -> None:
     except MatrixStackError:
         raise GLUsageError(f"{describe('popmatrix', args)}: matrix stack underflow "
                            f"(popmatrix without a matching pushmatrix)") from None
+
+
+@gl_function(record=True, binds=(0, math.inf, ()))
+def popmatrix(*args, **kwargs) -> None:
+    """popmatrix(): discard the top of the matrix stack; GLUsageError in MPROJECTION
+    and MTEXTURE, whose matrices are not stacked (see :func:`pushmatrix`)."""
+    ctx = session.imm
+    if ctx is None or args or kwargs:
+        return _general_popmatrix(*args, **kwargs)
+    try:
+        ctx.matrices.pop()
+    except (MatrixModeError, MatrixStackError):
+        _popmatrix(ctx, args)  # pop fails again before changing anything: the GLUsageError
 
 
 def _not_stacked(name: str, args: tuple, ctx) -> None:

@@ -55,9 +55,10 @@ from vgxsim import GL
 from vgxsim.pipeline.decode import drain
 from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, T, V
 from vgxsim.stream.opcodes import C as C_OP
-from vgxsim.stream.recorder import MAX_STREAM_OPS, Chunk
+from vgxsim.stream.recorder import MAX_STREAM_OPS, SPLICE_MIN_FLOATS, Chunk
 
 from ._core import (
+    _NO,
     GLTypeError,
     GLUsageError,
     GLValueError,
@@ -66,6 +67,7 @@ from ._core import (
     check_types,
     current,
     describe,
+    given,
     gl_function,
     record_or_refuse,
     session,
@@ -493,23 +495,34 @@ def getopenobj(*args) -> int:
 
 
 @gl_function(record=True, binds=(0, math.inf, ()))
-def callobj(*args, **kwargs) -> None:
+def callobj(obj=_NO, /, *more, **kw) -> None:
     """callobj(obj): draw an instance of ``obj``; undefined objects are ignored.
 
     Nested objects run on an explicit stack, at most MAX_NESTING deep."""
+    ctx = session.imm
+    if ctx is not None and not kw and not more and type(obj) is int and obj >= 0:
+        dobj = session.objects.get(obj)  # (a number past MAX_OBJECT is never stored)
+        if dobj is None:
+            if obj > MAX_OBJECT:
+                _object_arg("callobj", (obj,))  # raises
+            return
+        chunks = dobj.chunks
+        if chunks is not None:  # only vertex-stream calls: nothing nests
+            for ch in chunks:
+                splice(ctx, ch)
+            return
+    _general_callobj(*given((obj,), more), **kw)
+
+
+def _general_callobj(*args, **kwargs) -> None:
     if kwargs or session.recording is not None:
         return record_or_refuse(callobj, args, kwargs)
-    ctx = session.windows.get(session.current)
-    if (len(args) == 1 and type(args[0]) is int and 0 <= args[0] <= MAX_OBJECT
-            and ctx is not None):
-        obj = args[0]  # the checks of _object_arg and current, inlined
-    else:
-        obj = _object_arg("callobj", args)
-        ctx = current("callobj", args)
+    obj = _object_arg("callobj", args)
+    ctx = current("callobj", args)
     dobj = session.objects.get(obj)
     if dobj is None:
         return
-    if dobj.chunks is not None:  # only vertex-stream calls: nothing nests
+    if dobj.chunks is not None:
         for ch in dobj.chunks:
             splice(ctx, ch)
         return
@@ -615,11 +628,16 @@ def _bbox_culls(ctx, name: str, fargs: tuple) -> bool:
 
 def _colour_op(ctx) -> int:
     """What a recorded RGB colour call does in the caller's state (lmcolor(3G))."""
-    if not ctx.lighting_active():
+    bound = ctx.bound
+    if bound["material"] == 0 or bound["lmodel"] == 0:  # not Context.lighting_active()
         return C_OP
-    if ctx.lmcolor_mode == GL.LMC_NULL:
+    mode = ctx.lmcolor_mode
+    if mode == _LMC_NULL:
         return CSKIP
-    return C_OP if ctx.lmcolor_mode == GL.LMC_COLOR else CM
+    return C_OP if mode == _LMC_COLOR else CM
+
+
+_LMC_NULL, _LMC_COLOR = int(GL.LMC_NULL), int(GL.LMC_COLOR)
 
 
 def _check_needs(ctx, ch: Chunk) -> None:
@@ -638,6 +656,53 @@ def _check_needs(ctx, ch: Chunk) -> None:
                            f"open ({state})")
 
 
+class SplicePlan:
+    """What splicing one chunk with one colour op appends and leaves behind, worked
+    out once (:func:`plan_of`) so that callobj only copies and assigns.
+
+    Attributes
+    ----------
+    ops, fl : list
+        The chunk's opcodes (CRAW rewritten to the colour op) and floats, appended to
+        the stream's lists when the chunk is small; ``arrays`` is set instead
+        (``big``) when it is spliced as arrays (CommandStream.splice).
+    colour, normal, last_sent : object or None
+        The caller's current colour, normal and ``last_sent`` after the chunk (None:
+        unchanged); ``lmcolor_set`` True when a colour call reached the material.
+    rare : bool
+        The chunk sets a texture coordinate or the graphics position, or draws lines.
+    """
+
+    __slots__ = ("ops", "fl", "big", "colour", "normal", "last_sent", "lmcolor_set",
+                 "rare", "n_ops", "n_fl")
+
+
+def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
+    """The :class:`SplicePlan` of ``ch`` for ``colour_op`` (made once per chunk, colour
+    op and length: a chunk grows only while its object is recorded)."""
+    plan = ch.plans.get(colour_op)
+    if plan is not None and plan.n_ops == len(ch.ops) and plan.n_fl == len(ch.fl):
+        return plan
+    plan = SplicePlan()
+    codes, floats, ops_list = ch.arrays_for(colour_op)
+    plan.n_ops, plan.n_fl = len(ch.ops), len(ch.fl)
+    plan.big = floats.shape[0] >= SPLICE_MIN_FLOATS
+    plan.ops, plan.fl = ops_list, list(ch.fl)
+    coloured = ch.last_colour is not None
+    plan.colour = ch.last_colour if coloured and colour_op != CSKIP else None
+    plan.lmcolor_set = coloured and colour_op == CM
+    plan.normal = ch.last_normal
+    if colour_op == C_OP and coloured and not ch.normal_after_colour:
+        plan.last_sent = "colour"
+    elif ch.last_normal is not None:
+        plan.last_sent = "normal"
+    else:
+        plan.last_sent = None
+    plan.rare = ch.texcoord is not None or ch.gpos is not None or ch.has_lines
+    ch.plans[colour_op] = plan
+    return plan
+
+
 def splice(ctx, ch: Chunk) -> None:
     """Append a chunk to the window's stream and leave the caller's current
     attributes as the chunk's calls would have."""
@@ -651,44 +716,50 @@ def splice(ctx, ch: Chunk) -> None:
                                "the framebuffer is in colour map mode (cpack(3G)); use "
                                "color()")
         colour_op = _colour_op(ctx)
+    plan = ch.plans.get(colour_op)
+    if plan is None or plan.n_ops != len(ch.ops) or plan.n_fl != len(ch.fl):
+        plan = plan_of(ch, colour_op)
     st = ctx.stream
-    if len(st) > MAX_STREAM_OPS and ctx.prim is None:
-        drain(ctx)  # a full stream (callobj in a loop that never reads back)
-    if ch.touched_prim and ctx.prim is None:
-        _restate(ctx, st)
+    if ctx.prim is None:
+        if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
+            drain(ctx)  # a full stream (callobj in a loop that never reads back)
+        if ch.touched_prim:
+            _restate(ctx, st)
     if (ctx.colour is not st.colour or ctx.normal is not st.normal
             or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
         sync(ctx, st)  # the chunk's vertices start from the caller's attributes
-    if ch.open is not None:
+    opened = ch.open
+    if opened is not None:
         base_ops, base_fl = len(st), st.n_floats()
-    st.splice(ch, colour_op)
+    if plan.big:
+        st.splice(ch, colour_op)
+    else:  # CommandStream.splice's copy of a small chunk, without its calls
+        st.ops.extend(plan.ops)
+        st.fl.extend(plan.fl)
     if ch.touched_prim:
-        ctx.prim = ch.open
-        if ch.open is not None:
+        ctx.prim = opened
+        if opened is not None:
             st.open_ops, st.open_fl = base_ops + ch.open_at[0], base_fl + ch.open_at[1]
-    if ch.last_colour is not None and colour_op != CSKIP:
-        ctx.colour = ch.last_colour
-        if colour_op == CM:
-            ctx.lmcolor_set = True
-    if ch.last_normal is not None:
-        ctx.normal = ch.last_normal
-    if colour_op == C_OP and ch.last_colour is not None and not ch.normal_after_colour:
-        ctx.last_sent = "colour"
-    elif ch.last_normal is not None:
-        ctx.last_sent = "normal"
-    if ch.texcoord is not None:
-        ctx.texcoord = ch.texcoord
-        st.has_texcoords = True
-    if ch.gpos is not None:
-        ctx.gpos = ch.gpos
-    # The decoder leaves the chunk with the attributes set above (a C op clears the
-    # normal-sent flag, an N op sets it, a CM op sets lmcolor_set; the ctx fields
-    # were updated alike), so the stream has them: the next vertex or splice need not
-    # sync again (tests/stream: objects draw what immediate mode draws).
-    st.colour, st.normal, st.sent, st.lmcolor_set = (ctx.colour, ctx.normal, ctx.last_sent,
-                                                     ctx.lmcolor_set)
-    if ch.has_lines:
-        drain(ctx)
+    # The decoder leaves the chunk with the attributes set here (a C op clears the
+    # normal-sent flag, an N op sets it, a CM op sets lmcolor_set), so the stream has
+    # them too: the next vertex or splice need not sync again (tests/stream: objects
+    # draw what immediate mode draws).  The sync above made st's fields ctx's.
+    if plan.colour is not None:
+        ctx.colour = st.colour = plan.colour
+        if plan.lmcolor_set:
+            ctx.lmcolor_set = st.lmcolor_set = True
+    if plan.normal is not None:
+        ctx.normal = st.normal = plan.normal
+    if plan.last_sent is not None:
+        ctx.last_sent = st.sent = plan.last_sent
+    if plan.rare:
+        if ch.texcoord is not None:
+            ctx.texcoord = ch.texcoord
+            st.has_texcoords = True
+        if ch.gpos is not None:
+            ctx.gpos = ch.gpos
+        if ch.has_lines:
+            drain(ctx)
 
 
 @gl_function(record=False)

@@ -19,9 +19,12 @@ from vgxsim import GL
 from vgxsim.pipeline.context import CLEAR_COLOUR, CLEAR_STENCIL, CLEAR_Z
 from vgxsim.state.planes import ZMAX, ZMIN
 from vgxsim.state.registers import StencilRegister
+from vgxsim.tokens import Token
 
+from . import _core
 from ._color import packed_colour
 from ._core import (
+    _NO,
     GLUsageError,
     GLValueError,
     as_float,
@@ -29,6 +32,7 @@ from ._core import (
     check_token,
     current,
     describe,
+    given,
     gl_function,
     record_or_refuse,
     session,
@@ -46,7 +50,6 @@ __all__ = [
 ]
 
 _U32 = 0xFFFFFFFF
-_new_tuple = tuple.__new__
 _CMP = range(8)  # ZF_*, SF_*, AF_*: NEVER 0 .. ALWAYS 7
 _STOPS = range(6)  # ST_KEEP 0 .. ST_INVERT 5
 _SHORT_MAX = 0x7FFF
@@ -82,19 +85,24 @@ def zfunction(func: int) -> None:
     ctx.raster.set(zfunc=check_token("zfunction", args, "func", func, _CMP, "ZF_"))
 
 
-@gl_function(binds=(1, 1, ("int",)))
-def zwritemask(*args, **kwargs) -> None:
-    """zwritemask(mask): which z bits are written (zwritemask(3G)); 0 keeps z while
-    still testing it."""
+def _general_zwritemask(*args, **kwargs) -> None:
     if kwargs or session.recording is not None or len(args) != 1:
         return record_or_refuse(zwritemask, args, kwargs)
-    mask = args[0]
-    ctx = session.windows.get(session.current)
-    if ctx is None:
-        ctx = current("zwritemask", args)
+    ctx = current("zwritemask", args)
     regs = ctx.raster
-    regs.zwritemask = (mask if type(mask) is int else _u32("zwritemask", (mask,), "mask", mask)
-                       ) & _U32
+    regs.zwritemask = _u32("zwritemask", args, "mask", args[0])
+    regs._snapshot = None
+
+
+@gl_function(binds=(1, 1, ("int",)))
+def zwritemask(mask=_NO, /, *more, **kw) -> None:
+    """zwritemask(mask): which z bits are written (zwritemask(3G)); 0 keeps z while
+    still testing it."""
+    ctx = session.imm
+    if ctx is None or kw or more or type(mask) is not int:
+        return _general_zwritemask(*given((mask,), more), **kw)
+    regs = ctx.raster
+    regs.zwritemask = mask & _U32
     regs._snapshot = None
 
 
@@ -165,6 +173,34 @@ def setdepth(near: int, far: int) -> None:
 
 
 # -- stencil ----------------------------------------------------------------------
+def _general_stencil(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None or len(args) != 7:
+        return record_or_refuse(stencil, args, kwargs)
+    enable, ref, func, mask, fail, pass_, zpass = args
+    ctx = current("stencil", args)
+    on = as_int("stencil", args, "enable", enable) != 0
+    if not on:
+        ctx.raster.set(stencil=ctx.raster.stencil._replace(enable=False))
+        return
+    r = _u32("stencil", args, "ref", ref)
+    fn = check_token("stencil", args, "func", func, _CMP, "SF_")
+    m = _u32("stencil", args, "mask", mask)
+    ops = [check_token("stencil", args, what, v, _STOPS, "ST_")
+           for what, v in (("fail", fail), ("pass", pass_), ("zpass", zpass))]
+    reg = StencilRegister(True, r, fn, m, ops[0], ops[1], ops[2])
+    if _core.FAST_CALLS and all(type(a) in _INTS for a in args):
+        # One register object per distinct valid argument tuple (the 1991 shadow faces
+        # alternate between two), found again by stencil()'s valid path.
+        memo = ctx.raster.stencil_memo
+        if len(memo) >= 4096:
+            memo.clear()
+        memo[args] = reg
+    ctx.raster.set(stencil=reg)
+
+
+_INTS = (int, Token)  # plain ints and GL tokens (an int subclass)
+
+
 @gl_function(binds=(7, 7, ("int",) * 7))
 def stencil(*args, **kwargs) -> None:
     """stencil(enable, ref, func, mask, fail, pass_, zpass): set the stencil test and
@@ -177,41 +213,22 @@ def stencil(*args, **kwargs) -> None:
     Enabling without stencil planes (stensize 0) is stored but has no effect: the
     manual allows stencil only where planes exist, and the kernels skip the test.
     """
-    if kwargs or session.recording is not None or len(args) != 7:
-        return record_or_refuse(stencil, args, kwargs)
-    enable, ref, func, mask, fail, pass_, zpass = args
-    ctx = session.windows.get(session.current)
-    if ctx is None:
-        ctx = current("stencil", args)
-    if (isinstance(enable, int) and enable and isinstance(ref, int) and isinstance(func, int)
-            and isinstance(mask, int) and isinstance(fail, int) and isinstance(pass_, int)
-            and isinstance(zpass, int) and 0 <= func <= 7 and 0 <= fail <= 5
-            and 0 <= pass_ <= 5 and 0 <= zpass <= 5):
-        # Fast path (ints or GL tokens, valid values): the checks below, inlined.
-        regs = ctx.raster
-        # One register object per distinct valid argument tuple (the 1991 shadow faces
-        # alternate between two): a dict hit costs less than building the tuple
-        # (checked above, so only valid int arguments are ever keys).
-        reg = regs.stencil_memo.get(args)
-        if reg is None:
-            if len(regs.stencil_memo) > 4096:
-                regs.stencil_memo.clear()
-            # tuple.__new__: the NamedTuple's own __new__ costs about 1 us.
-            reg = regs.stencil_memo[args] = _new_tuple(
-                StencilRegister, (True, ref & _U32, func, mask & _U32, fail, pass_, zpass))
-        regs.stencil = reg
-        regs._snapshot = None
-        return
-    on = as_int("stencil", args, "enable", enable) != 0
-    if not on:
-        ctx.raster.set(stencil=ctx.raster.stencil._replace(enable=False))
-        return
-    r = _u32("stencil", args, "ref", ref)
-    fn = check_token("stencil", args, "func", func, _CMP, "SF_")
-    m = _u32("stencil", args, "mask", mask)
-    ops = [check_token("stencil", args, what, v, _STOPS, "ST_")
-           for what, v in (("fail", fail), ("pass", pass_), ("zpass", zpass))]
-    ctx.raster.set(stencil=StencilRegister(True, r, fn, m, ops[0], ops[1], ops[2]))
+    ctx = session.imm
+    if ctx is not None and not kwargs and len(args) == 7:
+        enable, ref, func, mask, fail, pass_, zpass = args
+        if (type(enable) in _INTS and type(ref) in _INTS and type(func) in _INTS
+                and type(mask) in _INTS and type(fail) in _INTS
+                and type(pass_) in _INTS and type(zpass) in _INTS):
+            # The register of an argument tuple validated before (only enabling calls
+            # with plain int or token arguments are remembered; the type checks keep a
+            # float equal to a valid int from finding it).
+            regs = ctx.raster
+            reg = regs.stencil_memo.get(args)
+            if reg is not None:
+                regs.stencil = reg
+                regs._snapshot = None
+                return
+    _general_stencil(*args, **kwargs)
 
 
 @gl_function()
@@ -238,20 +255,26 @@ def _need_rgb(ctx, name: str, args: tuple) -> None:
                            "writemask()")
 
 
-@gl_function(binds=(1, 1, ("int",)))
-def wmpack(*args, **kwargs) -> None:
-    """wmpack(mask): packed 0xAABBGGRR colour write mask (wmpack(3G)): ``wmpack(0xFF)``
-    writes red only, ``wmpack(0)`` no colour at all."""
+def _general_wmpack(*args, **kwargs) -> None:
     if kwargs or session.recording is not None or len(args) != 1:
         return record_or_refuse(wmpack, args, kwargs)
-    mask = args[0]
-    ctx = session.windows.get(session.current)
-    if ctx is None:
-        ctx = current("wmpack", args)
+    ctx = current("wmpack", args)
     if not ctx.config.rgb:
         _need_rgb(ctx, "wmpack", args)
     regs = ctx.raster
-    regs.wmpack = (mask if type(mask) is int else _u32("wmpack", args, "mask", mask)) & _U32
+    regs.wmpack = _u32("wmpack", args, "mask", args[0])
+    regs._snapshot = None
+
+
+@gl_function(binds=(1, 1, ("int",)))
+def wmpack(mask=_NO, /, *more, **kw) -> None:
+    """wmpack(mask): packed 0xAABBGGRR colour write mask (wmpack(3G)): ``wmpack(0xFF)``
+    writes red only, ``wmpack(0)`` no colour at all."""
+    ctx = session.imm
+    if ctx is None or kw or more or type(mask) is not int or not ctx.config.rgb:
+        return _general_wmpack(*given((mask,), more), **kw)
+    regs = ctx.raster
+    regs.wmpack = mask & _U32
     regs._snapshot = None
 
 

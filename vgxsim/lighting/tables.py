@@ -341,6 +341,9 @@ class LightingTables:
 
     def is_defined(self, deftype: int, index: int) -> bool:
         """True if ``index`` has been defined in the ``deftype`` table."""
+        entries = self._tables.get(deftype)
+        if entries is not None and type(index) is int:  # lmbind's common case, directly
+            return entries.get(index) is not None
         return self.get(deftype, index) is not None
 
     def indices(self, deftype: int) -> list[int]:

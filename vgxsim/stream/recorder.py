@@ -169,6 +169,8 @@ class Chunk:
         self.texcoord: tuple | None = None
         self.gpos: tuple | None = None
         self._variants: dict[tuple, tuple] = {}
+        # callobj's splice plans by colour op (vgxsim.gl._objects.plan_of).
+        self.plans: dict[int, object] = {}
 
     def arrays_for(self, colour_op: int) -> tuple[np.ndarray, np.ndarray, list]:
         """The chunk's opcodes, with every CRAW rewritten to ``colour_op``, and its

@@ -1,0 +1,75 @@
+"""The common calls' valid paths (gl/_core.py FAST_CALLS) draw what their general
+paths draw: the same random IRIS GL call sequences, immediately and through nested
+display objects, give identical colour, z and stencil planes with the switch on and
+off."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vgxsim.gl import _core
+from vgxsim.gl._core import session
+
+from .random_calls import SEEDS, render, sequence
+
+
+@pytest.fixture(autouse=True)
+def _fresh():
+    session.reset()
+    yield
+    session.reset()
+
+
+def _varied(calls: list, seed: int) -> list:
+    """``calls`` with every argument form the fast calls take: vertices, normals and
+    colours also as one tuple or list, and zwritemask changes between primitives."""
+    rng = np.random.default_rng(500 + seed)
+    out = []
+    for name, args in calls:
+        r = rng.random()
+        if name in ("v3f", "n3f", "c3f") and r < 0.4:
+            args = (tuple(args) if name == "n3f" or r < 0.2 else list(args),)
+        out.append((name, args))
+        if name.startswith("end") and rng.random() < 0.15:
+            out.append(("zwritemask", (int(rng.choice([0, 0xFFFFFFFF, 0xFF00])),)))
+    return out
+
+
+def _render(calls, objects: bool, seed: int, fast: bool, monkeypatch) -> dict:
+    monkeypatch.setattr(_core, "FAST_CALLS", fast)
+    session.refresh()
+    try:
+        return render(calls, objects=objects, seed=seed)
+    finally:
+        monkeypatch.setattr(_core, "FAST_CALLS", True)
+        session.refresh()
+
+
+@pytest.mark.parametrize("objects", [False, True])
+@pytest.mark.parametrize("seed", list(SEEDS))
+def test_fast_calls_switch_gives_identical_planes(seed, objects, monkeypatch):
+    calls = _varied(sequence(seed), seed)
+    a = _render(calls, objects, seed, True, monkeypatch)
+    b = _render(calls, objects, seed, False, monkeypatch)
+    assert a["rgba"][..., :3].any() or a["stencil"].any()
+    for k in a:
+        assert np.array_equal(a[k], b[k]), k
+
+
+def test_the_switch_decides_which_path_runs(monkeypatch):
+    from vgxsim import gl
+
+    gid = gl.winopen("switch")
+    try:
+        assert session.imm is session.windows[gid]  # the valid paths read this
+        gl.makeobj(1)
+        assert session.imm is None  # recording: every call takes its general path
+        gl.closeobj()
+        assert session.imm is session.windows[gid]
+        monkeypatch.setattr(_core, "FAST_CALLS", False)
+        session.refresh()
+        assert session.imm is None
+    finally:
+        gl.winclose(gid)
+    assert session.imm is None
