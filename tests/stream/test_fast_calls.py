@@ -23,11 +23,16 @@ def _fresh():
 
 def _varied(calls: list, seed: int) -> list:
     """``calls`` with every argument form the fast calls take: vertices, normals and
-    colours also as one tuple or list, and zwritemask changes between primitives."""
+    colours also as one tuple or list, zwritemask changes between primitives, and
+    stencil() alternating between two settings before primitives, as the 1991 shadow
+    faces do (each setting's snapshot and record are found again, not rebuilt)."""
     rng = np.random.default_rng(500 + seed)
+    faces = [(1, 0, 7, 0xFF, 0, 0, 3), (1, 0, 7, 0xFF, 0, 0, 4)]
     out = []
     for name, args in calls:
         r = rng.random()
+        if name.startswith("bgn") and r < 0.3:
+            out.append(("stencil", faces[int(rng.integers(0, 2))]))
         if name in ("v3f", "n3f", "c3f") and r < 0.4:
             args = (tuple(args) if name == "n3f" or r < 0.2 else list(args),)
         out.append((name, args))

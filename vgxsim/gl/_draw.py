@@ -145,7 +145,29 @@ def _restate(ctx, st) -> None:
     if same_state(ctx, st):
         return
     regs = ctx.raster
-    idx = ctx.states.intern(ctx)
+    snap = regs._snapshot
+    idx = -1
+    if (snap is not None and st.raster is not None and ctx.matrices._mvp is st.mvp
+            and st.mvp is not None and ctx.depth_range is st.depth
+            and ctx.lighting_serial == st.lighting_serial and ctx.concave is st.concave
+            and ctx.vertex_serial == st.vertex_serial):
+        # Only the raster snapshot changed since the last STATE op (the 1991 shadow
+        # faces: stencil() before each): the record interned for this snapshot under
+        # the same other parts, if the table still holds it (FAST_CALLS).
+        hit = st.state_memo.get(id(snap))
+        if hit is not None and hit[0] is snap:
+            recs = ctx.states.records
+            if hit[1] < len(recs) and recs[hit[1]] is hit[2]:
+                idx = hit[1]
+    else:
+        st.state_memo.clear()  # other parts changed: the records found so far differ
+    if idx < 0:
+        idx = ctx.states.intern(ctx)
+        snap = regs._snapshot
+        if session.imm is ctx:  # (FAST_CALLS on, immediate mode)
+            if len(st.state_memo) >= 256:
+                st.state_memo.clear()
+            st.state_memo[id(snap)] = (snap, idx, ctx.states.records[idx])
     st.raster = regs._snapshot
     st.mvp = ctx.matrices._mvp
     st.depth = ctx.depth_range

@@ -194,8 +194,23 @@ def _general_stencil(*args, **kwargs) -> None:
         memo = ctx.raster.stencil_memo
         if len(memo) >= 4096:
             memo.clear()
-        memo[args] = reg
+        memo[args] = _StencilEntry(reg)
     ctx.raster.set(stencil=reg)
+
+
+class _StencilEntry:
+    """stencil()'s memo entry for one valid argument tuple: its register, and the
+    raster snapshot each snapshot becomes when only this register changes
+    (``after[id(before)] = (before, after)``; ``before`` is kept so that its id
+    cannot be reused).  A snapshot is a function of the register values
+    (RasterRegisters.snapshot), so the pair found once holds for good, and the next
+    bgn* finds the snapshot made instead of building its 24-value key again."""
+
+    __slots__ = ("reg", "after")
+
+    def __init__(self, reg: StencilRegister):
+        self.reg = reg
+        self.after: dict[int, tuple] = {}
 
 
 _INTS = (int, Token)  # plain ints and GL tokens (an int subclass)
@@ -215,18 +230,34 @@ def stencil(*args, **kwargs) -> None:
     """
     ctx = session.imm
     if ctx is not None and not kwargs and len(args) == 7:
-        enable, ref, func, mask, fail, pass_, zpass = args
-        if (type(enable) in _INTS and type(ref) in _INTS and type(func) in _INTS
-                and type(mask) in _INTS and type(fail) in _INTS
-                and type(pass_) in _INTS and type(zpass) in _INTS):
-            # The register of an argument tuple validated before (only enabling calls
-            # with plain int or token arguments are remembered; the type checks keep a
-            # float equal to a valid int from finding it).
+        # The register of an argument tuple validated before (only enabling calls
+        # whose arguments are all plain ints or GL tokens are remembered).  A float,
+        # Fraction or numpy value equal to a remembered int would find it too, so the
+        # sum must be a plain int: it is one only when every argument is an int (or a
+        # bool or token, which the general path accepts alike); a float makes it a
+        # float, numpy a numpy scalar, and a str or None raise TypeError.  One sum
+        # costs less than seven type checks.
+        try:
+            kind = type(args[0] + args[1] + args[2] + args[3] + args[4] + args[5]
+                        + args[6])
+        except TypeError:
+            kind = None
+        if kind is int:
             regs = ctx.raster
-            reg = regs.stencil_memo.get(args)
-            if reg is not None:
-                regs.stencil = reg
+            entry = regs.stencil_memo.get(args)
+            if entry is not None:
+                before = regs._snapshot
+                regs.stencil = entry.reg
+                if before is None:
+                    return  # (another register changed too: the next bgn* derives it)
+                pair = entry.after.get(id(before))
+                if pair is not None and pair[0] is before:
+                    regs._snapshot = pair[1]
+                    return
                 regs._snapshot = None
+                if len(entry.after) >= 64:
+                    entry.after.clear()
+                entry.after[id(before)] = (before, regs.snapshot())
                 return
     _general_stencil(*args, **kwargs)
 

@@ -75,6 +75,10 @@ class CommandStream:
         # stream ever held a T op (only then is a texture coordinate decoded per vertex).
         self.tex_attrs = np.zeros(2)
         self.has_texcoords = False
+        # The gl layer's memo of interned records by raster snapshot while only the
+        # snapshot changes between STATE ops (vgxsim.gl._draw._restate):
+        # id(snapshot) -> (snapshot, record index, record).
+        self.state_memo: dict[int, tuple] = {}
         self.forget()
 
     def forget(self) -> None:
