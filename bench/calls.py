@@ -94,13 +94,24 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
         for _ in range(n):
             v3f(p)
 
+    nv = (0.0, 0.0, 1.0)
+    cv = (0.5, 0.25, 1.0)
+
     def loop_n3f():
         for _ in range(n):
             n3f(0.0, 0.0, 1.0)
 
+    def loop_n3f_seq():
+        for _ in range(n):
+            n3f(nv)
+
     def loop_c3f():
         for _ in range(n):
             c3f(0.5, 0.25, 1.0)
+
+    def loop_c3f_seq():
+        for _ in range(n):
+            c3f(cv)
 
     def loop_cpack():
         for _ in range(n):
@@ -108,8 +119,10 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
 
     out["v3f(x, y, z)"] = _median_ns(loop_v3f, n, rounds, bgn, close)
     out["v3f((x, y, z))"] = _median_ns(loop_v3f_seq, n, rounds, bgn, close)
-    out["n3f"] = _median_ns(loop_n3f, n, rounds)
-    out["c3f"] = _median_ns(loop_c3f, n, rounds)
+    out["n3f(x, y, z)"] = _median_ns(loop_n3f, n, rounds)
+    out["n3f((x, y, z))"] = _median_ns(loop_n3f_seq, n, rounds)
+    out["c3f(r, g, b)"] = _median_ns(loop_c3f, n, rounds)
+    out["c3f((r, g, b))"] = _median_ns(loop_c3f_seq, n, rounds)
     out["cpack"] = _median_ns(loop_cpack, n, rounds)
 
     def loop_bgnend():
@@ -190,6 +203,132 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
     out["callobj (1 quad)"] = _median_ns(loop_callobj, n // 4, rounds, after=ctx.flush)
     gl.winclose(gid)
     return out
+
+
+_NO = object()
+
+
+def python_floors(rounds: int) -> dict[str, tuple[float, float]]:
+    """What no Python implementation of each row can beat, measured here: ns per call
+    of (1) an empty Python function with the call's parameter shape (positional-only
+    slots and ``*more, **kw``, or ``*args, **kwargs``: the keyword argument is what
+    lets a call name itself in its GLTypeError), called as the row calls it, and (2)
+    the same function storing 3 floats into a preallocated list at a running index
+    (the least a vertex call records).  Same loops as the rows (loop overhead
+    included alike).  A row whose 5x target lies below floor (1) cannot meet it in
+    CPython, whatever the call does."""
+    n = N_CALLS
+    buf = [0.0] * (12 * n + 12)
+    at = [0]
+
+    def e0(*args, **kwargs):
+        pass
+
+    def e1(a=_NO, /, *more, **kw):
+        pass
+
+    def e2(a=_NO, b=_NO, /, *more, **kw):
+        pass
+
+    def e3(a=_NO, b=_NO, c=_NO, /, *more, **kw):
+        pass
+
+    def s3(a=_NO, b=_NO, c=_NO, /, *more, **kw):
+        i = at[0]
+        buf[i] = a
+        buf[i + 1] = b
+        buf[i + 2] = c
+        at[0] = i + 3
+
+    def s3_seq(a=_NO, b=_NO, c=_NO, /, *more, **kw):
+        x, y, z = a
+        i = at[0]
+        buf[i] = x
+        buf[i + 1] = y
+        buf[i + 2] = z
+        at[0] = i + 3
+
+    def reset():
+        at[0] = 0
+
+    p = (1.0, 2.0, 0.0)
+    ST_INCR, ST_DECR, MATERIAL = 3, 4, 1000
+
+    def shape3(f):
+        def loop():
+            for _ in range(n):
+                f(1.0, 2.0, 0.0)
+        return loop
+
+    def shape3_seq(f):
+        def loop():
+            for _ in range(n):
+                f(p)
+        return loop
+
+    def loop_e1():
+        for i in range(n):
+            e1(0xFFFFFFFF if i & 1 else 0)
+
+    def loop_e2():
+        for i in range(n):
+            e2(MATERIAL, i & 1)
+
+    def loop_e0_pair():
+        for _ in range(n):
+            e0()
+            e0()
+
+    def loop_e7():
+        for i in range(n):
+            e0(1, 0, 7, 0xFF, 0, 0, ST_INCR if i & 1 else ST_DECR)
+
+    def loop_matrix():
+        for _ in range(n):
+            e0()
+            e3(1.0, 2.0, 3.0)
+            e0()
+
+    def loop_face(f):
+        def loop():
+            for i in range(n):
+                e0(1, 0, 7, 0xFF, 0, 0, ST_INCR if i & 1 else ST_DECR)
+                e0()
+                f(p)
+                f(p)
+                f(p)
+                f(p)
+                e0()
+        return loop
+
+    def loop_callobj():
+        for _ in range(n // 4):
+            e1(1)
+
+    def both(empty_loop, store_loop=None, per: float = 1.0, calls: int = n):
+        empty = _median_ns(empty_loop, calls, rounds) / per
+        store = (_median_ns(store_loop, calls, rounds, before=reset) / per
+                 if store_loop is not None else float("nan"))
+        return empty, store
+
+    return {
+        "v3f(x, y, z)": both(shape3(e3), shape3(s3)),
+        "v3f((x, y, z))": both(shape3_seq(e3), shape3_seq(s3_seq)),
+        "n3f(x, y, z)": both(shape3(e3)),
+        "n3f((x, y, z))": both(shape3_seq(e3)),
+        "c3f(r, g, b)": both(shape3(e3)),
+        "c3f((r, g, b))": both(shape3_seq(e3)),
+        "cpack": both(loop_e1),
+        "bgnpolygon+endpolygon (empty)": both(loop_e0_pair, per=2),
+        "stencil": both(loop_e7),
+        "lmbind(MATERIAL)": both(loop_e2),
+        "zwritemask": both(loop_e1),
+        "wmpack": both(loop_e1),
+        "pushmatrix+translate+popmatrix (per call)": both(loop_matrix, per=3),
+        "stencil+bgnpolygon+4 v3f+endpolygon (per call)": both(
+            loop_face(e3), loop_face(s3_seq), per=7),
+        "callobj (1 quad)": both(loop_callobj, calls=n // 4),
+    }
 
 
 def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
@@ -333,13 +472,24 @@ def mesa_calls(rounds: int) -> dict[str, float] | None:
             G.glVertex3fv(v)
         G.glEnd()
 
+    nv = (0.0, 0.0, 1.0)
+    cv = (0.5, 0.25, 1.0)
+
     def loop_normal():
         for _ in range(n):
-            G.glNormal3fv(v)
+            G.glNormal3f(0.0, 0.0, 1.0)
+
+    def loop_normal_v():
+        for _ in range(n):
+            G.glNormal3fv(nv)
 
     def loop_colour():
         for _ in range(n):
             G.glColor3f(0.5, 0.25, 1.0)
+
+    def loop_colour_v():
+        for _ in range(n):
+            G.glColor3fv(cv)
 
     def loop_bgnend():
         for _ in range(n):
@@ -399,8 +549,10 @@ def mesa_calls(rounds: int) -> dict[str, float] | None:
 
     out["v3f(x, y, z)"] = _median_ns(loop_vertex_seq, n, rounds)
     out["v3f((x, y, z))"] = _median_ns(loop_vertex, n, rounds)
-    out["n3f"] = _median_ns(loop_normal, n, rounds)
-    out["c3f"] = _median_ns(loop_colour, n, rounds)
+    out["n3f(x, y, z)"] = _median_ns(loop_normal, n, rounds)
+    out["n3f((x, y, z))"] = _median_ns(loop_normal_v, n, rounds)
+    out["c3f(r, g, b)"] = _median_ns(loop_colour, n, rounds)
+    out["c3f((r, g, b))"] = _median_ns(loop_colour_v, n, rounds)
     out["cpack"] = _median_ns(loop_cpack, n, rounds)
     out["bgnpolygon+endpolygon (empty)"] = _median_ns(loop_bgnend, n, rounds) / 2
     out["stencil"] = _median_ns(loop_stencil, n, rounds)
@@ -408,6 +560,19 @@ def mesa_calls(rounds: int) -> dict[str, float] | None:
     out["zwritemask"] = _median_ns(loop_depthmask, n, rounds)
     out["wmpack"] = _median_ns(loop_colormask, n, rounds)
     out["pushmatrix+translate+popmatrix (per call)"] = _median_ns(loop_matrix, n, rounds) / 3
+    def loop_face():
+        # The shadow face group: glStencilOp, then the quad (7 calls).
+        for i in range(n):
+            G.glStencilOp(G.GL_KEEP, G.GL_KEEP, G.GL_INCR if i & 1 else G.GL_DECR)
+            G.glBegin(G.GL_POLYGON)
+            G.glVertex3fv(quad[0])
+            G.glVertex3fv(quad[1])
+            G.glVertex3fv(quad[2])
+            G.glVertex3fv(quad[3])
+            G.glEnd()
+
+    out["stencil+bgnpolygon+4 v3f+endpolygon (per call)"] = _median_ns(
+        loop_face, n, rounds) / 7
     out["callobj (1 quad)"] = _median_ns(loop_calllist, n // 4, rounds)
     G.glFinish()
     G.glDeleteLists(lst, 1)
@@ -448,16 +613,31 @@ def main(argv=None) -> int:
     if args.cpu:
         CLOCK["ns"] = time.process_time_ns
     calls = vgxsim_calls(rounds)
+    floors = python_floors(rounds)
     mesa = None if args.no_mesa else mesa_calls(rounds)
-    print(f"{'call':50s} {'vgxsim ns':>10s} {'PyOpenGL ns':>12s} {'ratio':>6s}")
+    print(f"{'call':48s} {'vgxsim':>7s} {'PyOpenGL':>8s} {'ratio':>5s} {'5x':>5s} "
+          f"{'empty':>5s} {'store':>5s}")
+    print("(ns per call; 5x: PyOpenGL / 5, the target; empty, store: the Python floors, "
+          "see python_floors)")
     for name, ns in calls.items():
-        m = "" if mesa is None or name not in mesa else (
-            f"{mesa[name]:12.0f} {mesa[name] / ns:6.1f}")
-        print(f"{name:50s} {ns:10.0f} {m}")
+        fe, fs = floors.get(name, (float("nan"), float("nan")))
+        m = mesa.get(name) if mesa else None
+        gl_cols = (f"{m:8.0f} {m / ns:5.1f} {m / 5:5.0f}" if m is not None
+                   else f"{'':8s} {'':5s} {'':5s}")
+        note = ""
+        if m is not None:
+            if ns <= m / 5:
+                note = "  met"
+            elif m / 5 < fe:
+                note = "  impossible: 5x is below the empty call"
+            elif m / 5 < fs:
+                note = "  impossible: 5x is below the 3-float store"
+        store = "" if fs != fs else f"{fs:5.0f}"  # (NaN: not a recording row)
+        print(f"{name:48s} {ns:7.0f} {gl_cols} {fe:5.0f} {store:>5s}{note}")
     if args.calls_only:
         if args.json:
             with open(args.json, "w") as f:
-                json.dump({"calls": calls, "mesa": mesa}, f, indent=1)
+                json.dump({"calls": calls, "mesa": mesa, "floors": floors}, f, indent=1)
         return 0
     frame = heidmann_frame(3 if args.quick else 7,
                            clock=time.process_time if args.cpu else time.perf_counter)
@@ -468,7 +648,8 @@ def main(argv=None) -> int:
         print(f"heidmann 1280x1024 {k:30s} {v:10.2f}")
     if args.json:
         with open(args.json, "w") as f:
-            json.dump({"calls": calls, "mesa": mesa, "frame": frame}, f, indent=1)
+            json.dump({"calls": calls, "mesa": mesa, "floors": floors, "frame": frame}, f,
+                  indent=1)
     return 0
 
 

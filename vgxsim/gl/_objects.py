@@ -674,18 +674,18 @@ class SplicePlan:
     """
 
     __slots__ = ("ops", "fl", "big", "colour", "normal", "last_sent", "lmcolor_set",
-                 "rare", "n_ops", "n_fl")
+                 "rare", "n_ops")
 
 
 def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
     """The :class:`SplicePlan` of ``ch`` for ``colour_op`` (made once per chunk, colour
     op and length: a chunk grows only while its object is recorded)."""
     plan = ch.plans.get(colour_op)
-    if plan is not None and plan.n_ops == len(ch.ops) and plan.n_fl == len(ch.fl):
+    if plan is not None and plan.n_ops == len(ch.ops):
         return plan
     plan = SplicePlan()
     codes, floats, ops_list = ch.arrays_for(colour_op)
-    plan.n_ops, plan.n_fl = len(ch.ops), len(ch.fl)
+    plan.n_ops = len(ch.ops)
     plan.big = floats.shape[0] >= SPLICE_MIN_FLOATS
     plan.ops, plan.fl = ops_list, list(ch.fl)
     coloured = ch.last_colour is not None
@@ -715,16 +715,26 @@ def splice(ctx, ch: Chunk) -> None:
             raise GLUsageError(f"{describe(name, args)}: it is an error to call {name} while "
                                "the framebuffer is in colour map mode (cpack(3G)); use "
                                "color()")
-        colour_op = _colour_op(ctx)
+        bound = ctx.bound
+        if bound["material"] != 0 and bound["lmodel"] != 0:  # Context.lighting_active
+            colour_op = _colour_op(ctx)
     plan = ch.plans.get(colour_op)
-    if plan is None or plan.n_ops != len(ch.ops) or plan.n_fl != len(ch.fl):
+    # (Every float a chunk records comes with an opcode, so the opcode count tells
+    # whether the chunk grew since the plan was made.)
+    if plan is None or plan.n_ops != len(ch.ops):
         plan = plan_of(ch, colour_op)
     st = ctx.stream
     if ctx.prim is None:
         if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
             drain(ctx)  # a full stream (callobj in a loop that never reads back)
         if ch.touched_prim:
-            _restate(ctx, st)
+            snap = ctx.raster._snapshot  # _draw.same_state, inlined (two calls less)
+            if not (snap is not None and snap is st.raster
+                    and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
+                    and ctx.lighting_serial == st.lighting_serial
+                    and ctx.concave is st.concave
+                    and ctx.vertex_serial == st.vertex_serial):
+                _restate(ctx, st)
     if (ctx.colour is not st.colour or ctx.normal is not st.normal
             or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
         sync(ctx, st)  # the chunk's vertices start from the caller's attributes
