@@ -190,7 +190,8 @@ class MatrixState:
             self._settle()
         # Shared, not copied: matrices are never changed in place (module docstring).
         self.modelview.append(self.modelview[-1])
-        self._touch()
+        self._mvp = None  # _touch(), inlined (pushmatrix/popmatrix: issue 6 per-call cost)
+        self._mv_inv_t = None
 
     def pop(self) -> None:
         if self.mode in (MPROJECTION, MTEXTURE):
@@ -200,7 +201,8 @@ class MatrixState:
             raise MatrixStackError("matrix stack underflow")
         self._pending = None  # translations of the discarded top
         self.modelview.pop()
-        self._touch()
+        self._mvp = None  # _touch(), inlined
+        self._mv_inv_t = None
 
     def set_mode(self, mode: int) -> None:
         """mmode(mode): entering or leaving MSINGLE empties the stacks and makes every
