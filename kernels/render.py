@@ -79,6 +79,8 @@ from .raster import covers, row_span
 from .spans import edge_next, edge_start_at, span_from
 from .texture import texture_fragment
 from .tiles import (
+    TB_SIZE,
+    TB_UNKNOWN,
     TB_VALID,
     TILE_FULL,
     TILE_MIN_PIXELS,
@@ -277,8 +279,8 @@ def _triangle_rows(
     work[WORK_FRAGMENTS] += tested
     if dv[D_STENCIL] != 0 and mode != MODE_COLOUR:
         work[WORK_STENCIL_WRITES] += tested
-    if dv[D_ZWRITE] != 0:
-        note_z_written(tb, xlo, xhi, zmin, zmax, dv[D_ZMASK])
+    if dv[D_ZWRITE] != 0 and nruns > 0:  # every tile skipped: nothing written
+        note_z_written(tb, xlo, xhi, zmin, zmax, dv[D_ZMASK], st[S_ZFUNC])
 
 
 @callee
@@ -487,7 +489,7 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten, tb):
 def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
                   front, back, zbuf, sten, tb, work):
     if dv[D_ZWRITE] != 0:
-        tb[:, TB_VALID] = 0  # points and lines: forget the band's depth bounds
+        tb[:, TB_VALID] = TB_UNKNOWN  # points and lines: forget the band's depth bounds
     for f in range(r_range[r, 0], r_range[r, 1]):
         y = f_xy[f, 1]
         if y < y_lo or y > y_hi or y < st[S_SY0] or y > st[S_SY1]:
@@ -559,12 +561,12 @@ def render_bands(
     band_h = 1 << band_shift
     nbands = starts.shape[0] - 1
     ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
-    tb = np.zeros((ntiles, 3), np.int64)
+    tb = np.zeros((ntiles, TB_SIZE), np.int64)
     runs = np.zeros((ntiles, 3), np.int64)
     for b in range(tid, nbands, nthreads):
         y_lo = b * band_h
         y_hi = min(y_lo + band_h, height) - 1
-        tb[:, TB_VALID] = 0  # bounds are found again in each band, on first use
+        tb[:, TB_VALID] = TB_UNKNOWN  # bounds are found again in each band, on first use
         bw = work[b]
         # The state's rows, taken again only when the state changes (a view costs
         # reference-count updates; runs of primitives share a state).

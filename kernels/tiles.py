@@ -30,8 +30,10 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim.state.codes import (
+    CMP_EQUAL,
     S_ZFUNC,
     WORK_BLOCKS_COVERED,
+    WORK_TILES_SCANNED,
     WORK_TILES_SKIPPED,
     Z24_MASK,
 )
@@ -49,8 +51,16 @@ TILE_MIN_PIXELS = 512
 ZMIN24, ZMAX24 = -0x800000, 0x7FFFFF
 _PLANE_LIMIT = 1e30  # |z0|, |gradients| below this: corner sums cannot overflow
 _CORNER_LIMIT = 4e18  # float depths below this convert to int64 monotonically
-# Columns of a band's tile-bounds array (ntiles, 3) int64.
-TB_VALID, TB_LO, TB_HI = 0, 1, 2
+# Columns of a band's tile-bounds array (ntiles, TB_SIZE) int64.  TB_VALID says what
+# [TB_LO, TB_HI] is: TB_UNKNOWN (nothing), TB_LOOSE (contains every stored depth, but
+# widened by z writes since the last scan) or TB_EXACT (the stored minimum and
+# maximum).  TB_DEBT: pixels of skip-eligible triangles that met the tile's loose
+# bounds without being skipped since they last became loose (when it reaches the
+# tile's size, one exact scan has been paid for: ski-rental, so rescans can at most
+# double the work they try to save).
+TB_VALID, TB_LO, TB_HI, TB_DEBT = 0, 1, 2, 3
+TB_SIZE = 4
+TB_UNKNOWN, TB_LOOSE, TB_EXACT = 0, 1, 2
 
 
 @inline
@@ -73,9 +83,10 @@ def scan_tile(zbuf, tx, y_lo, y_hi, tb):
             v = np.int64(row[np.uintp(x)])
             lo = min(lo, v)
             hi = max(hi, v)
-    tb[tx, TB_VALID] = 1
+    tb[tx, TB_VALID] = TB_EXACT
     tb[tx, TB_LO] = lo
     tb[tx, TB_HI] = hi
+    tb[tx, TB_DEBT] = 0
 
 
 @inline
@@ -134,6 +145,7 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, z
     skip = skip and (abs(z0) < _PLANE_LIMIT and abs(dzdx) < _PLANE_LIMIT
                      and abs(dzdy) < _PLANE_LIMIT)
     zfunc = st[S_ZFUNC]
+    tile_px = TILE_W * (y_hi - y_lo + 1)
     nruns = 0
     for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
         cx0 = max(xlo, tx << TILE_SHIFT)
@@ -147,11 +159,23 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, z
             flo = min(min(a, b), min(c, d))
             fhi = max(max(a, b), max(c, d))
             if flo > -_CORNER_LIMIT and fhi < _CORNER_LIMIT:
-                if tb[tx, TB_VALID] == 0:
+                if tb[tx, TB_VALID] == TB_UNKNOWN:
                     scan_tile(zbuf, tx, y_lo, y_hi, tb)
+                    work[WORK_TILES_SCANNED] += 1
                 # round_z is monotone: rounding the extremes gives the extremes.
-                if z_fails_everywhere(zfunc, round_z(flo, zmin, zmax),
-                                      round_z(fhi, zmin, zmax), tb[tx, TB_LO], tb[tx, TB_HI]):
+                rlo = round_z(flo, zmin, zmax)
+                rhi = round_z(fhi, zmin, zmax)
+                fails = z_fails_everywhere(zfunc, rlo, rhi, tb[tx, TB_LO], tb[tx, TB_HI])
+                if not fails and tb[tx, TB_VALID] == TB_LOOSE:
+                    # Loose bounds (widened by z writes) may be what keeps the tile;
+                    # scan again once the faces they kept have paid for a scan.
+                    tb[tx, TB_DEBT] += (cx1 - cx0 + 1) * (yhi - ylo + 1)
+                    if tb[tx, TB_DEBT] >= tile_px:
+                        scan_tile(zbuf, tx, y_lo, y_hi, tb)
+                        work[WORK_TILES_SCANNED] += 1
+                        fails = z_fails_everywhere(zfunc, rlo, rhi, tb[tx, TB_LO],
+                                                   tb[tx, TB_HI])
+                if fails:
                     cls = TILE_SKIP
                     work[WORK_TILES_SKIPPED] += 1
         if cls == TILE_PARTIAL and cover and covers(edge, cx0, ylo) and covers(
@@ -176,20 +200,30 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, z
 
 
 @inline
-def note_z_written(tb, xlo, xhi, zlo, zhi, zmask):
+def note_z_written(tb, xlo, xhi, zlo, zhi, zmask, zfunc):
     """After a primitive wrote depths in ``[zlo, zhi]`` (unwrapped) through
     ``zmask`` somewhere in columns ``[xlo, xhi]`` of the band: widen the valid
-    bounds of those tiles, or forget them when the stored value is not simply the
-    written one (a partial mask, or a depth that wraps to 24 bits)."""
-    exact = zmask == Z24_MASK and zlo >= ZMIN24 and zhi <= ZMAX24
+    bounds of those tiles (they become loose: the old extreme may be overwritten), or
+    forget them when the stored value is not simply the written one (a partial
+    mask, or a depth that wraps to 24 bits).  Under zfunction(ZF_EQUAL) a fragment
+    writes only where its depth equals the stored one, so a full-mask write of a
+    24-bit value leaves the plane, and any bounds within 24 bits, unchanged."""
+    full = zmask == Z24_MASK
+    exact = full and zlo >= ZMIN24 and zhi <= ZMAX24
     for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
-        if tb[tx, TB_VALID] == 0:
+        if tb[tx, TB_VALID] == TB_UNKNOWN:
+            continue
+        if full and zfunc == CMP_EQUAL and tb[tx, TB_LO] >= ZMIN24 and tb[tx, TB_HI] <= ZMAX24:
             continue
         if exact:
+            # Bounds still contain every depth, but the old extreme may be gone.
             tb[tx, TB_LO] = min(tb[tx, TB_LO], zlo)
             tb[tx, TB_HI] = max(tb[tx, TB_HI], zhi)
+            if tb[tx, TB_VALID] == TB_EXACT:
+                tb[tx, TB_VALID] = TB_LOOSE
+                tb[tx, TB_DEBT] = 0
         else:
-            tb[tx, TB_VALID] = 0
+            tb[tx, TB_VALID] = TB_UNKNOWN
 
 
 @inline
@@ -202,11 +236,15 @@ def note_z_cleared(tb, xlo, xhi, whole_rows, width, zval, zmask):
         tx0 = tx << TILE_SHIFT
         tx1 = min(tx0 + TILE_W, width) - 1
         if full and whole_rows and xlo <= tx0 and xhi >= tx1:
-            tb[tx, TB_VALID] = 1
+            tb[tx, TB_VALID] = TB_EXACT
             tb[tx, TB_LO] = v
             tb[tx, TB_HI] = v
-        elif full and tb[tx, TB_VALID] != 0:
+            tb[tx, TB_DEBT] = 0
+        elif full and tb[tx, TB_VALID] != TB_UNKNOWN:
             tb[tx, TB_LO] = min(tb[tx, TB_LO], v)
             tb[tx, TB_HI] = max(tb[tx, TB_HI], v)
+            if tb[tx, TB_VALID] == TB_EXACT:
+                tb[tx, TB_VALID] = TB_LOOSE
+                tb[tx, TB_DEBT] = 0
         else:
-            tb[tx, TB_VALID] = 0
+            tb[tx, TB_VALID] = TB_UNKNOWN

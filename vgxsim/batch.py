@@ -34,6 +34,7 @@ from vgxsim.state.codes import (
     WORK_FRAGMENTS,
     WORK_SIZE,
     WORK_STENCIL_WRITES,
+    WORK_TILES_SCANNED,
     WORK_TILES_SKIPPED,
 )
 from vgxsim.state.derive import derive_states
@@ -46,7 +47,8 @@ __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL", "WORK_NAM
 #: Names of the work counters, in the order of ``CommandBatch.counters``.
 WORK_NAMES = tuple(name for _, name in sorted([
     (WORK_FRAGMENTS, "fragments"), (WORK_TILES_SKIPPED, "tiles_skipped"),
-    (WORK_BLOCKS_COVERED, "blocks_covered"), (WORK_STENCIL_WRITES, "stencil_writes")]))
+    (WORK_BLOCKS_COVERED, "blocks_covered"), (WORK_STENCIL_WRITES, "stencil_writes"),
+    (WORK_TILES_SCANNED, "tiles_scanned")]))
 
 # Bands are 2**shift rows, 32 to 256.  Tall bands keep the triangle records a band
 # reads dense in memory (many small triangles are latency-bound on those reads);

@@ -129,6 +129,7 @@ def test_switches_change_no_plane_on_layered_scenes():
         cfg, init, cmds = layered_scene(rng, w, h)
         want, work = render(cmds, w, h, cfg, init, skip=False, cover=False)
         assert work["tiles_skipped"] == 0 and work["blocks_covered"] == 0
+        assert work["tiles_scanned"] == 0
         for mode in ("span", "general", "edge"):
             for skip, cover in SWITCHES:
                 got, work = render(cmds, w, h, cfg, init, mode, skip, cover)
@@ -140,6 +141,7 @@ def test_switches_change_no_plane_on_layered_scenes():
     # The scenes exercise what they claim to: tiles skipped and blocks covered.
     assert total["tiles_skipped"] > 100
     assert total["blocks_covered"] > 100
+    assert total["tiles_scanned"] > 0
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -187,6 +189,40 @@ def test_counters_count_fragments_and_skipped_tiles():
     assert front["stencil_writes"] == w * h
     assert front["tiles_skipped"] == 0
     assert (fb.stencil == 1).all()
+
+
+def test_loose_bounds_are_scanned_again_and_equal_writes_keep_them():
+    """Hand-counted, one flush: a z clear to GD_ZMAX, a depth quad at z = 0 over the
+    whole 128 x 64 window (its write widens each tile's bounds to [0, GD_ZMAX]:
+    loose), a volume quad behind it (z = 1000), a ZF_EQUAL pass over the depth quad
+    (writes z, but only values equal to the stored ones), a second volume quad
+    behind.  Each triangle's rectangle covers each tile, so meeting loose bounds it
+    pays for a scan at once; the bounds are then [0, 0] and every volume triangle is
+    skipped in every tile (the EQUAL pass leaves them as they are).  Stencil and z as
+    with skipping off."""
+    w, h = 128, 64
+    white = (1.0, 1.0, 1.0, 1.0)
+    clear = full_state(w, h)
+    depth = full_state(w, h, zbuffer=True, zfunc=CMP_LEQUAL)
+    equal = full_state(w, h, zbuffer=True, zfunc=CMP_EQUAL)
+    vol = full_state(w, h, zbuffer=True, zfunc=CMP_LESS, zwritemask=0, wmpack=0, stencil=True,
+                     szpass=OP_INCR)
+
+    def quad(z, rs):
+        q = [(-0.5 + x, -0.5 + y, z, white) for x, y in ((0, 0), (w, 0), (w, h), (0, h))]
+        return [("triangle", (q[0], q[1], q[2]), rs), ("triangle", (q[0], q[2], q[3]), rs)]
+
+    cmds = ([("clear", {"z", "stencil"}, {"z": GD_ZMAX, "stencil": 0}, clear)]
+            + quad(0.0, depth) + quad(1000.0, vol) + quad(0.0, equal) + quad(1000.0, vol))
+    cfg = dict(double=False, zbits=24, stencil=8)
+    want, off = render(cmds, w, h, cfg, None, skip=False, cover=False)
+    got, on = render(cmds, w, h, cfg, None, skip=True, cover=False)
+    assert_planes_equal(got, want, "loose bounds")
+    nbands = -(-h // (1 << band_shift(h, max(1, threads.get_threads()))))
+    assert off["fragments"] == 4 * w * h
+    assert on["fragments"] == 2 * w * h  # the depth and EQUAL passes only
+    assert 0 < on["tiles_scanned"] <= 3 * 2 * nbands  # at most a scan per quad and tile
+    assert on["tiles_skipped"] == 2 * 2 * 2 * nbands  # two quads x two triangles x two tiles
 
 
 def test_scissor_keeps_bands_outside_unvisited():
