@@ -165,7 +165,7 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    step_spans, tb, runs, work, tex,
+    tight_tiles, step_spans, tb, runs, spans, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -174,7 +174,40 @@ def _triangle_rows(
     if xlo > xhi or ylo > yhi:
         return
     skip = skip_tiles and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
-    if (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS:
+    step = step_spans and not edge_mode
+    classify = (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
+    # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
+    s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
+    s1, q1, r1, d1, bq1, br1 = edge_start_at(t_edge, t, 1, ylo)
+    s2, q2, r2, d2, bq2, br2 = edge_start_at(t_edge, t, 2, ylo)
+    stored = classify and step and tight_tiles
+    ys = ylo  # row of spans[0]
+    if stored:
+        # Solve the band's row spans first: the triangle's own pixels in the band
+        # bound the tiles to classify (a thin shadow face's bounding box holds many
+        # tiles it never touches) and its corners' depth range (tighter bounds skip
+        # more); the rows below read the stored spans instead of stepping again.
+        cxl = xhi + 1
+        cxr = xlo - 1
+        ry0 = yhi + 1
+        ry1 = ylo - 1
+        for y in range(ylo, yhi + 1):
+            sl, sr = span_from(s0, q0, s1, q1, s2, q2, xlo, xhi)
+            q0, r0 = edge_next(q0, r0, d0, bq0, br0)
+            q1, r1 = edge_next(q1, r1, d1, bq1, br1)
+            q2, r2 = edge_next(q2, r2, d2, bq2, br2)
+            spans[y - ys, 0] = sl
+            spans[y - ys, 1] = sr
+            if sl <= sr:
+                cxl = min(cxl, sl)
+                cxr = max(cxr, sr)
+                ry0 = min(ry0, y)
+                ry1 = y
+        if ry0 > ry1:
+            return  # no pixel centre of this band is inside
+        xlo, xhi, ylo, yhi = cxl, cxr, ry0, ry1
+        classify = (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
+    if classify:
         nruns = classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st,
                                zbuf, tb, runs, skip, cover_blocks, not edge_mode, work)
     else:
@@ -199,11 +232,6 @@ def _triangle_rows(
     smax = dv[D_SMAX]
     narrow = xhi - xlo < NARROW
     cbuf = back if st[S_DRAW_BACK] else front  # MODE_COLOUR draws one buffer
-    step = step_spans and not edge_mode
-    # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
-    s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
-    s1, q1, r1, d1, bq1, br1 = edge_start_at(t_edge, t, 1, ylo)
-    s2, q2, r2, d2, bq2, br2 = edge_start_at(t_edge, t, 2, ylo)
     tested = 0
     for y in range(ylo, yhi + 1):
         if nruns == 0:
@@ -211,7 +239,11 @@ def _triangle_rows(
         sl = 0
         sr = -1
         solved = False
-        if step:
+        if stored:
+            sl = spans[y - ys, 0]
+            sr = spans[y - ys, 1]
+            solved = True
+        elif step:
             sl, sr = span_from(s0, q0, s1, q1, s2, q2, xlo, xhi)
             solved = True
             q0, r0 = edge_next(q0, r0, d0, bq0, br0)
@@ -511,7 +543,7 @@ def render_bands(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    edge_mode, general_only, skip_tiles, cover_blocks, step_spans, work, tex,
+    edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -551,6 +583,9 @@ def render_bands(
     skip_tiles, cover_blocks : bool
         Exact work skipping (:mod:`.tiles`): tiles whose depth bounds decide the z
         test; tiles fully inside a triangle (switches, on by default).
+    tight_tiles : bool
+        Classify tiles over a triangle's own pixels in the band (its row spans,
+        solved first and kept), not its bounding box (a switch, on by default).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -563,6 +598,7 @@ def render_bands(
     ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
     tb = np.zeros((ntiles, TB_SIZE), np.int64)
     runs = np.zeros((ntiles, 3), np.int64)
+    spans = np.zeros((band_h, 2), np.int64)  # a triangle's row spans in one band
     for b in range(tid, nbands, nthreads):
         y_lo = b * band_h
         y_hi = min(y_lo + band_h, height) - 1
@@ -589,7 +625,7 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, step_spans, tb, runs, bw, tex,
+                    cover_blocks, tight_tiles, step_spans, tb, runs, spans, bw, tex,
                 )
             elif kind == KIND_FRAGMENTS:
                 s = r_state[ref]

@@ -114,6 +114,10 @@ class CommandBatch:
         whose depth bounds fail the z test for a whole triangle; run tiles fully
         inside a triangle without edge tests.  Switching either off changes no pixel.
         Class attributes: set them on ``CommandBatch`` to switch every batch.
+    tight_tiles : bool
+        With spans stepped: a triangle's tiles are classified over its own pixels
+        in each band (row spans solved first), not over its bounding box; on by
+        default, a switch that changes no pixel.
     step_spans : bool
         Row spans of a triangle carried from row to row by exact integer steps
         (vgxsim/kernels/spans.py) instead of solved per row; on by default, the
@@ -124,15 +128,17 @@ class CommandBatch:
         their set-up records into band order so that each band reads its own
         front to back (kernels/render.py gather_band_records); on by default, a
         switch that changes nothing drawn.
-    counters : ndarray, shape (4,), int64
+    counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
-        covered without edge tests, fragments of passes that may write stencil.
+        covered without edge tests, fragments of passes that may write stencil,
+        tiles whose depth bounds were read from the z plane.
         :meth:`work` gives them by name.
     """
 
     skip_tiles = True
     cover_blocks = True
+    tight_tiles = True
     step_spans = True
     band_records = True
 
@@ -597,7 +603,8 @@ class CommandBatch:
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
-            self.skip_tiles, self.cover_blocks, self.step_spans, work, (self.t_tex, *tex_table),
+            self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans, work,
+            (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
         if nthreads == 1:

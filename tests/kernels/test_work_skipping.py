@@ -4,7 +4,8 @@ Scenes here are layered the way shadow algorithms layer them (a depth pass, then
 faces in front of and behind the stored depths, then an EQUAL pass), over windows
 wide and tall enough for several 64-column tiles and several bands, so that tiles
 really are skipped and fully covered.  Each is rendered with every combination of
-the two switches (skip_tiles, cover_blocks) on every rasterizer path and must give
+the switches (skip_tiles, cover_blocks, tight_tiles) on every rasterizer path (and
+spans stepped or solved) and must give
 identical planes, and a few are checked against the naive reference.
 """
 
@@ -45,14 +46,17 @@ from vgxsim.state.raster import (
     OP_REPLACE,
 )
 
-SWITCHES = list(itertools.product((True, False), repeat=2))  # (skip_tiles, cover_blocks)
+# (skip_tiles, cover_blocks, tight_tiles)
+SWITCHES = list(itertools.product((True, False), repeat=3))
 
 
-def render(cmds, w, h, cfg, init, mode="span", skip=True, cover=True):
+def render(cmds, w, h, cfg, init, mode="span", skip=True, cover=True, tight=True, step=True):
     fb = kernel_framebuffer(w, h, init=init, **cfg)
     batch = kernel_batch(fb, mode)
     batch.skip_tiles = skip
     batch.cover_blocks = cover
+    batch.tight_tiles = tight
+    batch.step_spans = step
     queue_commands(batch, cmds)
     batch.flush()
     return planes_of(fb), batch.work()
@@ -127,15 +131,17 @@ def test_switches_change_no_plane_on_layered_scenes():
     total = dict.fromkeys(WORK_NAMES, 0)
     for i in range(40):
         cfg, init, cmds = layered_scene(rng, w, h)
-        want, work = render(cmds, w, h, cfg, init, skip=False, cover=False)
+        want, work = render(cmds, w, h, cfg, init, skip=False, cover=False, tight=False,
+                            step=False)
         assert work["tiles_skipped"] == 0 and work["blocks_covered"] == 0
         assert work["tiles_scanned"] == 0
-        for mode in ("span", "general", "edge"):
-            for skip, cover in SWITCHES:
-                got, work = render(cmds, w, h, cfg, init, mode, skip, cover)
-                assert_planes_equal(got, want, f"scene {i} mode={mode} skip={skip} "
-                                               f"cover={cover}")
-                if mode == "span" and skip and cover:
+        for mode, step in (("span", True), ("span", False), ("general", True),
+                           ("edge", True)):
+            for skip, cover, tight in SWITCHES:
+                got, work = render(cmds, w, h, cfg, init, mode, skip, cover, tight, step)
+                assert_planes_equal(got, want, f"scene {i} mode={mode} step={step} "
+                                               f"skip={skip} cover={cover} tight={tight}")
+                if mode == "span" and step and skip and cover and tight:
                     for k in total:
                         total[k] += work[k]
     # The scenes exercise what they claim to: tiles skipped and blocks covered.
@@ -154,14 +160,20 @@ def test_layered_scenes_match_naive(seed):
     assert_planes_equal(got, want, f"seed {seed}")
 
 
-def test_counters_count_fragments_and_skipped_tiles():
+@pytest.mark.parametrize("tight", [False, True])
+def test_counters_count_fragments_and_skipped_tiles(tight):
     """Hand-counted: a 128 x 64 rectangle (two triangles) drawn behind a z clear to 0
-    fails the z test in every tile (2 tiles of 64 columns in each band), so nothing
-    is tested; drawn in front, all 8192 pixels are tested, the stencil pass may write
-    each of them, and the two tiles are covered by neither triangle alone."""
+    fails the z test in every tile, so nothing is tested; drawn in front, all 8192
+    pixels are tested, the stencil pass may write each of them, and the two tiles are
+    covered by neither triangle alone.  Over bounding boxes each triangle meets the
+    2 tiles of 64 columns in each band.  Over the triangles' own pixels: one band of
+    64 rows still holds both tiles of each triangle; with two bands of 32 rows the
+    diagonal from (0, 0) to (128, 64) crosses row 32 at x = 64, so each triangle has
+    pixels in one tile of one band and in both tiles of the other."""
     w, h = 128, 64
     fb = kernel_framebuffer(w, h, double=False, zbits=24, stencil=8)
     batch = CommandBatch(fb)
+    batch.tight_tiles = tight
     clear = full_state(w, h)
     vol = full_state(w, h, zbuffer=True, zfunc=CMP_LESS, zwritemask=0, wmpack=0, stencil=True,
                      szpass=OP_INCR)
@@ -182,7 +194,11 @@ def test_counters_count_fragments_and_skipped_tiles():
     nbands = -(-h // (1 << band_shift(h, max(1, threads.get_threads()))))
     behind = draw(1000.0)
     assert behind["fragments"] == 0
-    assert behind["tiles_skipped"] == 2 * 2 * nbands  # two triangles x two tiles
+    if tight:
+        assert nbands in (1, 2)
+        assert behind["tiles_skipped"] == 2 * (2 if nbands == 1 else 3)
+    else:
+        assert behind["tiles_skipped"] == 2 * 2 * nbands  # two triangles x two tiles
     assert not fb.stencil.any()
     front = draw(-1000.0)
     assert front["fragments"] == w * h
@@ -216,7 +232,7 @@ def test_loose_bounds_are_scanned_again_and_equal_writes_keep_them():
             + quad(0.0, depth) + quad(1000.0, vol) + quad(0.0, equal) + quad(1000.0, vol))
     cfg = dict(double=False, zbits=24, stencil=8)
     want, off = render(cmds, w, h, cfg, None, skip=False, cover=False)
-    got, on = render(cmds, w, h, cfg, None, skip=True, cover=False)
+    got, on = render(cmds, w, h, cfg, None, skip=True, cover=False, tight=False)
     assert_planes_equal(got, want, "loose bounds")
     nbands = -(-h // (1 << band_shift(h, max(1, threads.get_threads()))))
     assert off["fragments"] == 4 * w * h
@@ -240,7 +256,7 @@ def test_scissor_keeps_bands_outside_unvisited():
     assert not fb.front.any()
 
 
-def _heidmann(monkeypatch, skip, cover, **kw):
+def _heidmann(monkeypatch, skip, cover, tight=True, **kw):
     """The 1991 frame at 320 x 256 with the switches set on every batch: the image,
     each light's stencil plane and z plane, and the work counted."""
     from vgxsim.examples import heidmann1991 as h91
@@ -248,6 +264,7 @@ def _heidmann(monkeypatch, skip, cover, **kw):
 
     monkeypatch.setattr(CommandBatch, "skip_tiles", skip)
     monkeypatch.setattr(CommandBatch, "cover_blocks", cover)
+    monkeypatch.setattr(CommandBatch, "tight_tiles", tight)
     session.reset()
     planes = {}
 
@@ -265,10 +282,10 @@ def _heidmann(monkeypatch, skip, cover, **kw):
 
 @pytest.mark.parametrize("edges", ["silhouette", "all"])
 def test_heidmann_frame_is_identical_with_each_switch(monkeypatch, edges):
-    want_img, want = _heidmann(monkeypatch, False, False, edges=edges)
+    want_img, want = _heidmann(monkeypatch, False, False, False, edges=edges)
     assert want and all(w[2]["tiles_skipped"] == 0 for w in want.values())
-    for skip, cover in SWITCHES[:-1]:
-        img, got = _heidmann(monkeypatch, skip, cover, edges=edges)
+    for skip, cover, tight in SWITCHES[:-1]:
+        img, got = _heidmann(monkeypatch, skip, cover, tight, edges=edges)
         np.testing.assert_array_equal(img, want_img)
         assert got.keys() == want.keys()
         for light in want:
