@@ -83,6 +83,8 @@ from .tiles import (
     TB_UNKNOWN,
     TB_VALID,
     TILE_FULL,
+    TILE_H,
+    TILE_H_SHIFT,
     TILE_MIN_PIXELS,
     TILE_PARTIAL,
     TILE_SHIFT,
@@ -183,12 +185,10 @@ def _triangle_rows(
     stored = classify and step and tight_tiles
     ys = ylo  # row of spans[0]
     if stored:
-        # Solve the band's row spans first: the triangle's own pixels in the band
-        # bound the tiles to classify (a thin shadow face's bounding box holds many
-        # tiles it never touches) and its corners' depth range (tighter bounds skip
-        # more); the rows below read the stored spans instead of stepping again.
-        cxl = xhi + 1
-        cxr = xlo - 1
+        # Solve the band's row spans first: the triangle's own pixels in each tile
+        # row bound the tiles to classify (a thin shadow face's bounding box holds
+        # many tiles it never touches) and its corners' depth range (tighter bounds
+        # skip more); the rows below read the stored spans instead of stepping.
         ry0 = yhi + 1
         ry1 = ylo - 1
         for y in range(ylo, yhi + 1):
@@ -199,22 +199,17 @@ def _triangle_rows(
             spans[y - ys, 0] = sl
             spans[y - ys, 1] = sr
             if sl <= sr:
-                cxl = min(cxl, sl)
-                cxr = max(cxr, sr)
                 ry0 = min(ry0, y)
                 ry1 = y
         if ry0 > ry1:
             return  # no pixel centre of this band is inside
-        xlo, xhi, ylo, yhi = cxl, cxr, ry0, ry1
-        classify = (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
-    if classify:
-        nruns = classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st,
-                               zbuf, tb, runs, skip, cover_blocks, not edge_mode, work)
-    else:
-        runs[0, 0] = xlo
-        runs[0, 1] = xhi
-        runs[0, 2] = TILE_PARTIAL
-        nruns = 1
+        ylo, yhi = ry0, ry1
+    ntx = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
+    runs[0, 0] = xlo
+    runs[0, 1] = xhi
+    runs[0, 2] = TILE_PARTIAL
+    nruns = 1
+    next_chunk = ylo  # with classify: the first row of the next tile row
     z0 = t_z[t, 0]
     x0 = t_z[t, 1]
     y0 = t_z[t, 2]
@@ -234,8 +229,6 @@ def _triangle_rows(
     cbuf = back if st[S_DRAW_BACK] else front  # MODE_COLOUR draws one buffer
     tested = 0
     for y in range(ylo, yhi + 1):
-        if nruns == 0:
-            break
         sl = 0
         sr = -1
         solved = False
@@ -249,6 +242,40 @@ def _triangle_rows(
             q0, r0 = edge_next(q0, r0, d0, bq0, br0)
             q1, r1 = edge_next(q1, r1, d1, bq1, br1)
             q2, r2 = edge_next(q2, r2, d2, bq2, br2)
+        if classify and y == next_chunk:
+            # A new tile row (TILE_H rows of the band): classify its tiles over the
+            # triangle's rectangle in it (its own pixels when the spans are stored).
+            ty = (y - y_lo) >> TILE_H_SHIFT
+            c_lo = y_lo + (ty << TILE_H_SHIFT)
+            c_hi = min(y_hi, c_lo + TILE_H - 1)
+            cy1 = min(yhi, c_hi)
+            next_chunk = cy1 + 1
+            cxl = xlo
+            cxr = xhi
+            cy0 = y
+            if stored:
+                cxl = xhi + 1
+                cxr = xlo - 1
+                cy0 = cy1 + 1
+                for yy in range(y, cy1 + 1):
+                    if spans[yy - ys, 0] <= spans[yy - ys, 1]:
+                        cxl = min(cxl, spans[yy - ys, 0])
+                        cxr = max(cxr, spans[yy - ys, 1])
+                        cy0 = min(cy0, yy)
+                        cy1 = yy
+            if cxl > cxr:
+                nruns = 0
+            elif (cxr - cxl + 1) * (cy1 - cy0 + 1) >= TILE_MIN_PIXELS:
+                nruns = classify_tiles(t, cxl, cxr, cy0, cy1, c_lo, c_hi, ty * ntx, t_edge,
+                                       t_z, t_zlim, st, zbuf, tb, runs, skip, cover_blocks,
+                                       not edge_mode, work)
+            else:
+                runs[0, 0] = cxl
+                runs[0, 1] = cxr
+                runs[0, 2] = TILE_PARTIAL
+                nruns = 1
+        if nruns == 0 or (stored and sl > sr):
+            continue  # every tile of this tile row skipped, or an empty row
         for r in range(nruns):
             full = runs[r, 2] == TILE_FULL
             if full or edge_mode:
@@ -311,8 +338,8 @@ def _triangle_rows(
     work[WORK_FRAGMENTS] += tested
     if dv[D_STENCIL] != 0 and mode != MODE_COLOUR:
         work[WORK_STENCIL_WRITES] += tested
-    if dv[D_ZWRITE] != 0 and nruns > 0:  # every tile skipped: nothing written
-        note_z_written(tb, xlo, xhi, zmin, zmax, dv[D_ZMASK], st[S_ZFUNC])
+    if dv[D_ZWRITE] != 0 and tested > 0:  # every tile skipped: nothing written
+        note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zmin, zmax, dv[D_ZMASK], st[S_ZFUNC])
 
 
 @callee
@@ -506,7 +533,7 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten, tb):
             for x in range(xlo, xhi + 1):
                 ux = np.uintp(x)
                 row[ux] = write_z(np.int64(row[ux]), zval, zmask)
-        note_z_cleared(tb, xlo, xhi, ylo == y_lo and yhi == y_hi, front.shape[1], zval, zmask)
+        note_z_cleared(tb, xlo, xhi, ylo, yhi, y_lo, y_hi, front.shape[1], zval, zmask)
     if planes & CLEAR_STENCIL:
         wm = dv[D_SWM]
         sval = c_vals[c, 3] & wm
@@ -596,7 +623,8 @@ def render_bands(
     band_h = 1 << band_shift
     nbands = starts.shape[0] - 1
     ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
-    tb = np.zeros((ntiles, TB_SIZE), np.int64)
+    # Tile bounds of one band: (band_h / TILE_H) tile rows of ntiles tiles.
+    tb = np.zeros((ntiles * max(1, band_h >> TILE_H_SHIFT), TB_SIZE), np.int64)
     runs = np.zeros((ntiles, 3), np.int64)
     spans = np.zeros((band_h, 2), np.int64)  # a triangle's row spans in one band
     for b in range(tid, nbands, nthreads):

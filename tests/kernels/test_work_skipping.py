@@ -24,8 +24,7 @@ from kernel_helpers import (
     render_naive,
 )
 
-from vgxsim import threads
-from vgxsim.batch import WORK_NAMES, CommandBatch, band_shift
+from vgxsim.batch import WORK_NAMES, CommandBatch
 from vgxsim.reference.naive import GD_ZMAX, GD_ZMIN
 from vgxsim.state.raster import (
     BF_MSA,
@@ -165,11 +164,10 @@ def test_counters_count_fragments_and_skipped_tiles(tight):
     """Hand-counted: a 128 x 64 rectangle (two triangles) drawn behind a z clear to 0
     fails the z test in every tile, so nothing is tested; drawn in front, all 8192
     pixels are tested, the stencil pass may write each of them, and the two tiles are
-    covered by neither triangle alone.  Over bounding boxes each triangle meets the
-    2 tiles of 64 columns in each band.  Over the triangles' own pixels: one band of
-    64 rows still holds both tiles of each triangle; with two bands of 32 rows the
-    diagonal from (0, 0) to (128, 64) crosses row 32 at x = 64, so each triangle has
-    pixels in one tile of one band and in both tiles of the other."""
+    covered by neither triangle alone.  Tiles are 64 columns by 32 rows: over
+    bounding boxes each triangle meets all 2 x 2 tiles.  Over the triangles' own
+    pixels: the diagonal from (0, 0) to (128, 64) crosses row 32 at x = 64, so each
+    triangle has pixels in one tile of one tile row and both tiles of the other."""
     w, h = 128, 64
     fb = kernel_framebuffer(w, h, double=False, zbits=24, stencil=8)
     batch = CommandBatch(fb)
@@ -191,14 +189,9 @@ def test_counters_count_fragments_and_skipped_tiles(tight):
         batch.flush()
         return batch.work()
 
-    nbands = -(-h // (1 << band_shift(h, max(1, threads.get_threads()))))
     behind = draw(1000.0)
     assert behind["fragments"] == 0
-    if tight:
-        assert nbands in (1, 2)
-        assert behind["tiles_skipped"] == 2 * (2 if nbands == 1 else 3)
-    else:
-        assert behind["tiles_skipped"] == 2 * 2 * nbands  # two triangles x two tiles
+    assert behind["tiles_skipped"] == 2 * (3 if tight else 4)  # two triangles
     assert not fb.stencil.any()
     front = draw(-1000.0)
     assert front["fragments"] == w * h
@@ -234,11 +227,10 @@ def test_loose_bounds_are_scanned_again_and_equal_writes_keep_them():
     want, off = render(cmds, w, h, cfg, None, skip=False, cover=False)
     got, on = render(cmds, w, h, cfg, None, skip=True, cover=False, tight=False)
     assert_planes_equal(got, want, "loose bounds")
-    nbands = -(-h // (1 << band_shift(h, max(1, threads.get_threads()))))
     assert off["fragments"] == 4 * w * h
     assert on["fragments"] == 2 * w * h  # the depth and EQUAL passes only
-    assert 0 < on["tiles_scanned"] <= 3 * 2 * nbands  # at most a scan per quad and tile
-    assert on["tiles_skipped"] == 2 * 2 * 2 * nbands  # two quads x two triangles x two tiles
+    assert 0 < on["tiles_scanned"] <= 3 * 4  # at most a scan per quad and tile
+    assert on["tiles_skipped"] == 2 * 2 * 4  # two quads x two triangles x 2 x 2 tiles
 
 
 def test_scissor_keeps_bands_outside_unvisited():
