@@ -87,6 +87,7 @@ from .tiles import (
     TILE_H_SHIFT,
     TILE_MIN_PIXELS,
     TILE_PARTIAL,
+    TILE_ROW_MIN_PIXELS,
     TILE_SHIFT,
     TILE_W,
     classify_tiles,
@@ -265,7 +266,8 @@ def _triangle_rows(
                         cy1 = yy
             if cxl > cxr:
                 nruns = 0
-            elif (cxr - cxl + 1) * (cy1 - cy0 + 1) >= TILE_MIN_PIXELS:
+            elif (cxr - cxl + 1) * (cy1 - cy0 + 1) >= (TILE_ROW_MIN_PIXELS if stored
+                                                         else TILE_MIN_PIXELS):
                 nruns = classify_tiles(t, cxl, cxr, cy0, cy1, c_lo, c_hi, ty * ntx, t_edge,
                                        t_z, t_zlim, st, zbuf, tb, runs, skip, cover_blocks,
                                        not edge_mode, work)

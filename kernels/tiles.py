@@ -50,6 +50,10 @@ TILE_SKIP, TILE_PARTIAL, TILE_FULL = 0, 1, 2
 # Triangles with fewer pixels than this in a band are not classified tile by tile:
 # the corner tests would cost more than they save (the result is the same).
 TILE_MIN_PIXELS = 512
+# The same for the rectangle of a triangle's own pixels in one tile row (spans
+# solved first, kernels/render.py): it is close to the work itself, so one tile's
+# test (a few dozen operations) pays off over far fewer pixels.
+TILE_ROW_MIN_PIXELS = 64
 ZMIN24, ZMAX24 = -0x800000, 0x7FFFFF
 _PLANE_LIMIT = 1e30  # |z0|, |gradients| below this: corner sums cannot overflow
 _CORNER_LIMIT = 4e18  # float depths below this convert to int64 monotonically
@@ -63,6 +67,10 @@ _CORNER_LIMIT = 4e18  # float depths below this convert to int64 monotonically
 TB_VALID, TB_LO, TB_HI, TB_DEBT = 0, 1, 2, 3
 TB_SIZE = 4
 TB_UNKNOWN, TB_LOOSE, TB_EXACT = 0, 1, 2
+# A loose tile is scanned again once faces it kept cover 1 / 2**RESCAN_SHIFT of it:
+# a scan reads a tile once, but exact bounds serve every later face (a shadow pass
+# draws many faces over the same tiles), so paying for it early is the better bet.
+RESCAN_SHIFT = 3
 
 
 @inline
@@ -176,7 +184,7 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
                     # Loose bounds (widened by z writes) may be what keeps the tile;
                     # scan again once the faces they kept have paid for a scan.
                     tb[i, TB_DEBT] += (cx1 - cx0 + 1) * (yhi - ylo + 1)
-                    if tb[i, TB_DEBT] >= tile_px:
+                    if tb[i, TB_DEBT] >= tile_px >> RESCAN_SHIFT:
                         scan_tile(zbuf, tx, y_lo, y_hi, tb, i)
                         work[WORK_TILES_SCANNED] += 1
                         fails = z_fails_everywhere(zfunc, rlo, rhi, tb[i, TB_LO],
