@@ -211,5 +211,51 @@ def mesa_frame(threads: int) -> dict:
             "threads": threads}
 
 
+def vgxsim_work(rounds: int = 5) -> dict:
+    """The dense frame on vgxsim with exact work skipping on and off (alternating
+    round by round): median process CPU time of the raster (CommandBatch.flush) in
+    s, and the work counters of one frame with each setting."""
+    passes, ntri, nvol = build()
+    run, batch = vgxsim_frame(passes)
+    spent = [0.0]
+    real_flush = CommandBatch.flush
+
+    def timed_flush(self, *a, **k):
+        t = time.process_time()
+        try:
+            return real_flush(self, *a, **k)
+        finally:
+            spent[0] += time.process_time() - t
+
+    switches = ("skip_tiles", "cover_blocks", "tight_tiles")
+    samples: dict = {True: [], False: []}
+    work = {}
+    CommandBatch.flush = timed_flush
+    try:
+        for r in range(rounds + 1):
+            for on in (True, False):
+                for sw in switches:
+                    setattr(CommandBatch, sw, on)
+                spent[0] = 0.0
+                batch.reset_counters()
+                run()
+                work[on] = batch.work()
+                if r:
+                    samples[on].append(spent[0])
+    finally:
+        CommandBatch.flush = real_flush
+        for sw in switches:
+            setattr(CommandBatch, sw, True)
+    return {"raster_cpu": float(np.median(samples[True])),
+            "raster_cpu_noskip": float(np.median(samples[False])),
+            "work": work[True], "work_noskip": work[False],
+            "triangles": ntri, "volume_triangles": nvol}
+
+
 if __name__ == "__main__":
-    print(json.dumps(mesa_frame(int(sys.argv[1]))))
+    # ``python bench/dense_scene.py THREADS``: Mesa llvmpipe (one process per count);
+    # ``python bench/dense_scene.py vgxsim``: vgxsim's raster CPU and work counters.
+    if sys.argv[1:] == ["vgxsim"]:
+        print(json.dumps(vgxsim_work()))
+    else:
+        print(json.dumps(mesa_frame(int(sys.argv[1]))))

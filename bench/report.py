@@ -59,6 +59,7 @@ def set_skipping(on: bool) -> None:
     """Exact work skipping on every batch (kernels/tiles.py switches)."""
     CommandBatch.skip_tiles = on
     CommandBatch.cover_blocks = on
+    CommandBatch.tight_tiles = on
 
 
 def vgxsim_rates(rounds: int) -> tuple[dict, dict]:

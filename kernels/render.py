@@ -79,10 +79,15 @@ from .raster import covers, row_span
 from .spans import edge_next, edge_start_at, span_from
 from .texture import texture_fragment
 from .tiles import (
+    TB_SIZE,
+    TB_UNKNOWN,
     TB_VALID,
     TILE_FULL,
+    TILE_H,
+    TILE_H_SHIFT,
     TILE_MIN_PIXELS,
     TILE_PARTIAL,
+    TILE_ROW_MIN_PIXELS,
     TILE_SHIFT,
     TILE_W,
     classify_tiles,
@@ -163,7 +168,7 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    step_spans, tb, runs, work, tex,
+    tight_tiles, step_spans, tb, runs, spans, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -172,14 +177,40 @@ def _triangle_rows(
     if xlo > xhi or ylo > yhi:
         return
     skip = skip_tiles and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
-    if (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS:
-        nruns = classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st,
-                               zbuf, tb, runs, skip, cover_blocks, not edge_mode, work)
-    else:
-        runs[0, 0] = xlo
-        runs[0, 1] = xhi
-        runs[0, 2] = TILE_PARTIAL
-        nruns = 1
+    step = step_spans and not edge_mode
+    classify = (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
+    # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
+    s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
+    s1, q1, r1, d1, bq1, br1 = edge_start_at(t_edge, t, 1, ylo)
+    s2, q2, r2, d2, bq2, br2 = edge_start_at(t_edge, t, 2, ylo)
+    stored = classify and step and tight_tiles
+    ys = ylo  # row of spans[0]
+    if stored:
+        # Solve the band's row spans first: the triangle's own pixels in each tile
+        # row bound the tiles to classify (a thin shadow face's bounding box holds
+        # many tiles it never touches) and its corners' depth range (tighter bounds
+        # skip more); the rows below read the stored spans instead of stepping.
+        ry0 = yhi + 1
+        ry1 = ylo - 1
+        for y in range(ylo, yhi + 1):
+            sl, sr = span_from(s0, q0, s1, q1, s2, q2, xlo, xhi)
+            q0, r0 = edge_next(q0, r0, d0, bq0, br0)
+            q1, r1 = edge_next(q1, r1, d1, bq1, br1)
+            q2, r2 = edge_next(q2, r2, d2, bq2, br2)
+            spans[y - ys, 0] = sl
+            spans[y - ys, 1] = sr
+            if sl <= sr:
+                ry0 = min(ry0, y)
+                ry1 = y
+        if ry0 > ry1:
+            return  # no pixel centre of this band is inside
+        ylo, yhi = ry0, ry1
+    ntx = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
+    runs[0, 0] = xlo
+    runs[0, 1] = xhi
+    runs[0, 2] = TILE_PARTIAL
+    nruns = 1
+    next_chunk = ylo  # with classify: the first row of the next tile row
     z0 = t_z[t, 0]
     x0 = t_z[t, 1]
     y0 = t_z[t, 2]
@@ -197,24 +228,56 @@ def _triangle_rows(
     smax = dv[D_SMAX]
     narrow = xhi - xlo < NARROW
     cbuf = back if st[S_DRAW_BACK] else front  # MODE_COLOUR draws one buffer
-    step = step_spans and not edge_mode
-    # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
-    s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
-    s1, q1, r1, d1, bq1, br1 = edge_start_at(t_edge, t, 1, ylo)
-    s2, q2, r2, d2, bq2, br2 = edge_start_at(t_edge, t, 2, ylo)
     tested = 0
     for y in range(ylo, yhi + 1):
-        if nruns == 0:
-            break
         sl = 0
         sr = -1
         solved = False
-        if step:
+        if stored:
+            sl = spans[y - ys, 0]
+            sr = spans[y - ys, 1]
+            solved = True
+        elif step:
             sl, sr = span_from(s0, q0, s1, q1, s2, q2, xlo, xhi)
             solved = True
             q0, r0 = edge_next(q0, r0, d0, bq0, br0)
             q1, r1 = edge_next(q1, r1, d1, bq1, br1)
             q2, r2 = edge_next(q2, r2, d2, bq2, br2)
+        if classify and y == next_chunk:
+            # A new tile row (TILE_H rows of the band): classify its tiles over the
+            # triangle's rectangle in it (its own pixels when the spans are stored).
+            ty = (y - y_lo) >> TILE_H_SHIFT
+            c_lo = y_lo + (ty << TILE_H_SHIFT)
+            c_hi = min(y_hi, c_lo + TILE_H - 1)
+            cy1 = min(yhi, c_hi)
+            next_chunk = cy1 + 1
+            cxl = xlo
+            cxr = xhi
+            cy0 = y
+            if stored:
+                cxl = xhi + 1
+                cxr = xlo - 1
+                cy0 = cy1 + 1
+                for yy in range(y, cy1 + 1):
+                    if spans[yy - ys, 0] <= spans[yy - ys, 1]:
+                        cxl = min(cxl, spans[yy - ys, 0])
+                        cxr = max(cxr, spans[yy - ys, 1])
+                        cy0 = min(cy0, yy)
+                        cy1 = yy
+            if cxl > cxr:
+                nruns = 0
+            elif (cxr - cxl + 1) * (cy1 - cy0 + 1) >= (TILE_ROW_MIN_PIXELS if stored
+                                                         else TILE_MIN_PIXELS):
+                nruns = classify_tiles(t, cxl, cxr, cy0, cy1, c_lo, c_hi, ty * ntx, t_edge,
+                                       t_z, t_zlim, st, zbuf, tb, runs, skip, cover_blocks,
+                                       not edge_mode, work)
+            else:
+                runs[0, 0] = cxl
+                runs[0, 1] = cxr
+                runs[0, 2] = TILE_PARTIAL
+                nruns = 1
+        if nruns == 0 or (stored and sl > sr):
+            continue  # every tile of this tile row skipped, or an empty row
         for r in range(nruns):
             full = runs[r, 2] == TILE_FULL
             if full or edge_mode:
@@ -277,8 +340,8 @@ def _triangle_rows(
     work[WORK_FRAGMENTS] += tested
     if dv[D_STENCIL] != 0 and mode != MODE_COLOUR:
         work[WORK_STENCIL_WRITES] += tested
-    if dv[D_ZWRITE] != 0:
-        note_z_written(tb, xlo, xhi, zmin, zmax, dv[D_ZMASK])
+    if dv[D_ZWRITE] != 0 and tested > 0:  # every tile skipped: nothing written
+        note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zmin, zmax, dv[D_ZMASK], st[S_ZFUNC])
 
 
 @callee
@@ -472,7 +535,7 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten, tb):
             for x in range(xlo, xhi + 1):
                 ux = np.uintp(x)
                 row[ux] = write_z(np.int64(row[ux]), zval, zmask)
-        note_z_cleared(tb, xlo, xhi, ylo == y_lo and yhi == y_hi, front.shape[1], zval, zmask)
+        note_z_cleared(tb, xlo, xhi, ylo, yhi, y_lo, y_hi, front.shape[1], zval, zmask)
     if planes & CLEAR_STENCIL:
         wm = dv[D_SWM]
         sval = c_vals[c, 3] & wm
@@ -487,7 +550,7 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten, tb):
 def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
                   front, back, zbuf, sten, tb, work):
     if dv[D_ZWRITE] != 0:
-        tb[:, TB_VALID] = 0  # points and lines: forget the band's depth bounds
+        tb[:, TB_VALID] = TB_UNKNOWN  # points and lines: forget the band's depth bounds
     for f in range(r_range[r, 0], r_range[r, 1]):
         y = f_xy[f, 1]
         if y < y_lo or y > y_hi or y < st[S_SY0] or y > st[S_SY1]:
@@ -509,7 +572,7 @@ def render_bands(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    edge_mode, general_only, skip_tiles, cover_blocks, step_spans, work, tex,
+    edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -549,6 +612,9 @@ def render_bands(
     skip_tiles, cover_blocks : bool
         Exact work skipping (:mod:`.tiles`): tiles whose depth bounds decide the z
         test; tiles fully inside a triangle (switches, on by default).
+    tight_tiles : bool
+        Classify tiles over a triangle's own pixels in the band (its row spans,
+        solved first and kept), not its bounding box (a switch, on by default).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -559,12 +625,14 @@ def render_bands(
     band_h = 1 << band_shift
     nbands = starts.shape[0] - 1
     ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
-    tb = np.zeros((ntiles, 3), np.int64)
+    # Tile bounds of one band: (band_h / TILE_H) tile rows of ntiles tiles.
+    tb = np.zeros((ntiles * max(1, band_h >> TILE_H_SHIFT), TB_SIZE), np.int64)
     runs = np.zeros((ntiles, 3), np.int64)
+    spans = np.zeros((band_h, 2), np.int64)  # a triangle's row spans in one band
     for b in range(tid, nbands, nthreads):
         y_lo = b * band_h
         y_hi = min(y_lo + band_h, height) - 1
-        tb[:, TB_VALID] = 0  # bounds are found again in each band, on first use
+        tb[:, TB_VALID] = TB_UNKNOWN  # bounds are found again in each band, on first use
         bw = work[b]
         # The state's rows, taken again only when the state changes (a view costs
         # reference-count updates; runs of primitives share a state).
@@ -587,7 +655,7 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, step_spans, tb, runs, bw, tex,
+                    cover_blocks, tight_tiles, step_spans, tb, runs, spans, bw, tex,
                 )
             elif kind == KIND_FRAGMENTS:
                 s = r_state[ref]

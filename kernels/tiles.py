@@ -30,8 +30,10 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim.state.codes import (
+    CMP_EQUAL,
     S_ZFUNC,
     WORK_BLOCKS_COVERED,
+    WORK_TILES_SCANNED,
     WORK_TILES_SKIPPED,
     Z24_MASK,
 )
@@ -41,16 +43,34 @@ from .options import callee, inline
 from .raster import covers
 
 TILE_SHIFT = 6
-TILE_W = 1 << TILE_SHIFT  # columns per tile; a tile is TILE_W x the band's rows
+TILE_W = 1 << TILE_SHIFT  # columns per tile
+TILE_H_SHIFT = 5
+TILE_H = 1 << TILE_H_SHIFT  # rows per tile (bands are at least this tall, batch.py)
 TILE_SKIP, TILE_PARTIAL, TILE_FULL = 0, 1, 2
 # Triangles with fewer pixels than this in a band are not classified tile by tile:
 # the corner tests would cost more than they save (the result is the same).
 TILE_MIN_PIXELS = 512
+# The same for the rectangle of a triangle's own pixels in one tile row (spans
+# solved first, kernels/render.py): it is close to the work itself, so one tile's
+# test (a few dozen operations) pays off over far fewer pixels.
+TILE_ROW_MIN_PIXELS = 64
 ZMIN24, ZMAX24 = -0x800000, 0x7FFFFF
 _PLANE_LIMIT = 1e30  # |z0|, |gradients| below this: corner sums cannot overflow
 _CORNER_LIMIT = 4e18  # float depths below this convert to int64 monotonically
-# Columns of a band's tile-bounds array (ntiles, 3) int64.
-TB_VALID, TB_LO, TB_HI = 0, 1, 2
+# Columns of a band's tile-bounds array (ntiles, TB_SIZE) int64.  TB_VALID says what
+# [TB_LO, TB_HI] is: TB_UNKNOWN (nothing), TB_LOOSE (contains every stored depth, but
+# widened by z writes since the last scan) or TB_EXACT (the stored minimum and
+# maximum).  TB_DEBT: pixels of skip-eligible triangles that met the tile's loose
+# bounds without being skipped since they last became loose (when it reaches the
+# tile's size, one exact scan has been paid for: ski-rental, so rescans can at most
+# double the work they try to save).
+TB_VALID, TB_LO, TB_HI, TB_DEBT = 0, 1, 2, 3
+TB_SIZE = 4
+TB_UNKNOWN, TB_LOOSE, TB_EXACT = 0, 1, 2
+# A loose tile is scanned again once faces it kept cover 1 / 2**RESCAN_SHIFT of it:
+# a scan reads a tile once, but exact bounds serve every later face (a shadow pass
+# draws many faces over the same tiles), so paying for it early is the better bet.
+RESCAN_SHIFT = 3
 
 
 @inline
@@ -61,8 +81,8 @@ def _plane_at(z0, dzdx, dzdy, x0, y0, x, y):
 
 
 @callee
-def scan_tile(zbuf, tx, y_lo, y_hi, tb):
-    """Exact depth bounds of tile ``tx`` over rows ``[y_lo, y_hi]`` into ``tb[tx]``."""
+def scan_tile(zbuf, tx, y_lo, y_hi, tb, i):
+    """Exact depth bounds of tile column ``tx`` over rows ``[y_lo, y_hi]`` into ``tb[i]``."""
     x0 = tx << TILE_SHIFT
     x1 = min(x0 + TILE_W, zbuf.shape[1]) - 1
     lo = np.int64(zbuf[y_lo, x0])
@@ -73,9 +93,10 @@ def scan_tile(zbuf, tx, y_lo, y_hi, tb):
             v = np.int64(row[np.uintp(x)])
             lo = min(lo, v)
             hi = max(hi, v)
-    tb[tx, TB_VALID] = 1
-    tb[tx, TB_LO] = lo
-    tb[tx, TB_HI] = hi
+    tb[i, TB_VALID] = TB_EXACT
+    tb[i, TB_LO] = lo
+    tb[i, TB_HI] = hi
+    tb[i, TB_DEBT] = 0
 
 
 @inline
@@ -90,25 +111,28 @@ def z_fails_everywhere(zfunc, zlo, zhi, blo, bhi):
 
 
 @callee
-def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, zbuf, tb,
-                   runs, skip, cover, merge, work):
-    """Classify the tiles of triangle ``t``'s rectangle in one band; write the runs
-    of adjacent non-skipped tiles of one class into ``runs``.
+def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim, st, zbuf,
+                   tb, runs, skip, cover, merge, work):
+    """Classify the tiles of triangle ``t``'s rectangle in one tile row of a band;
+    write the runs of adjacent non-skipped tiles of one class into ``runs``.
 
     Parameters
     ----------
     t : int
         Triangle record.
     xlo, xhi, ylo, yhi : int
-        The triangle's pixel rectangle in this band (bounding box, scissor, band).
+        A rectangle holding the triangle's pixels in this tile row (bounding box,
+        scissor, band, tile row; or its own pixels' rectangle).
     y_lo, y_hi : int
-        The band's rows (the tiles' extent in y).
+        The tile row's rows (the tiles' extent in y).
+    base : int
+        Index in ``tb`` of the tile row's first tile.
     t_edge, t_z, t_zlim : ndarray
         Set-up records (see :func:`vgxsim.kernels.setup.setup_triangles`).
     st : ndarray, shape (ROW_SIZE,), int64
         State row.
     zbuf : ndarray, shape (H, W), int32
-    tb : ndarray, shape (ntiles, 3), int64
+    tb : ndarray, shape (n, TB_SIZE), int64
         The band's tile bounds (TB_*), filled in on first use.
     runs : ndarray, shape (ntiles, 3), int64
         Output: ``(x first, x last, TILE_FULL or TILE_PARTIAL)`` per run.
@@ -134,6 +158,7 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, z
     skip = skip and (abs(z0) < _PLANE_LIMIT and abs(dzdx) < _PLANE_LIMIT
                      and abs(dzdy) < _PLANE_LIMIT)
     zfunc = st[S_ZFUNC]
+    tile_px = TILE_W * (y_hi - y_lo + 1)
     nruns = 0
     for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
         cx0 = max(xlo, tx << TILE_SHIFT)
@@ -147,11 +172,24 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, z
             flo = min(min(a, b), min(c, d))
             fhi = max(max(a, b), max(c, d))
             if flo > -_CORNER_LIMIT and fhi < _CORNER_LIMIT:
-                if tb[tx, TB_VALID] == 0:
-                    scan_tile(zbuf, tx, y_lo, y_hi, tb)
+                i = base + tx
+                if tb[i, TB_VALID] == TB_UNKNOWN:
+                    scan_tile(zbuf, tx, y_lo, y_hi, tb, i)
+                    work[WORK_TILES_SCANNED] += 1
                 # round_z is monotone: rounding the extremes gives the extremes.
-                if z_fails_everywhere(zfunc, round_z(flo, zmin, zmax),
-                                      round_z(fhi, zmin, zmax), tb[tx, TB_LO], tb[tx, TB_HI]):
+                rlo = round_z(flo, zmin, zmax)
+                rhi = round_z(fhi, zmin, zmax)
+                fails = z_fails_everywhere(zfunc, rlo, rhi, tb[i, TB_LO], tb[i, TB_HI])
+                if not fails and tb[i, TB_VALID] == TB_LOOSE:
+                    # Loose bounds (widened by z writes) may be what keeps the tile;
+                    # scan again once the faces they kept have paid for a scan.
+                    tb[i, TB_DEBT] += (cx1 - cx0 + 1) * (yhi - ylo + 1)
+                    if tb[i, TB_DEBT] >= tile_px >> RESCAN_SHIFT:
+                        scan_tile(zbuf, tx, y_lo, y_hi, tb, i)
+                        work[WORK_TILES_SCANNED] += 1
+                        fails = z_fails_everywhere(zfunc, rlo, rhi, tb[i, TB_LO],
+                                                   tb[i, TB_HI])
+                if fails:
                     cls = TILE_SKIP
                     work[WORK_TILES_SKIPPED] += 1
         if cls == TILE_PARTIAL and cover and covers(edge, cx0, ylo) and covers(
@@ -176,37 +214,61 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, t_edge, t_z, t_zlim, st, z
 
 
 @inline
-def note_z_written(tb, xlo, xhi, zlo, zhi, zmask):
+def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc):
     """After a primitive wrote depths in ``[zlo, zhi]`` (unwrapped) through
-    ``zmask`` somewhere in columns ``[xlo, xhi]`` of the band: widen the valid
-    bounds of those tiles, or forget them when the stored value is not simply the
-    written one (a partial mask, or a depth that wraps to 24 bits)."""
-    exact = zmask == Z24_MASK and zlo >= ZMIN24 and zhi <= ZMAX24
-    for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
-        if tb[tx, TB_VALID] == 0:
-            continue
-        if exact:
-            tb[tx, TB_LO] = min(tb[tx, TB_LO], zlo)
-            tb[tx, TB_HI] = max(tb[tx, TB_HI], zhi)
-        else:
-            tb[tx, TB_VALID] = 0
+    ``zmask`` somewhere in columns ``[xlo, xhi]``, rows ``[ylo, yhi]`` of the band
+    starting at row ``y_lo`` (``ntx`` tiles a tile row): widen the valid bounds of
+    those tiles (they become loose: the old extreme may be overwritten), or forget
+    them when the stored value is not simply the written one (a partial mask, or a
+    depth that wraps to 24 bits).  Under zfunction(ZF_EQUAL) a fragment writes only
+    where its depth equals the stored one, so a full-mask write of a 24-bit value
+    leaves the plane, and any bounds within 24 bits, unchanged."""
+    full = zmask == Z24_MASK
+    exact = full and zlo >= ZMIN24 and zhi <= ZMAX24
+    for ty in range((ylo - y_lo) >> TILE_H_SHIFT, ((yhi - y_lo) >> TILE_H_SHIFT) + 1):
+        for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
+            i = ty * ntx + tx
+            if tb[i, TB_VALID] == TB_UNKNOWN:
+                continue
+            if full and zfunc == CMP_EQUAL and tb[i, TB_LO] >= ZMIN24 and (
+                    tb[i, TB_HI] <= ZMAX24):
+                continue
+            if exact:
+                # Bounds still contain every depth, but the old extreme may be gone.
+                tb[i, TB_LO] = min(tb[i, TB_LO], zlo)
+                tb[i, TB_HI] = max(tb[i, TB_HI], zhi)
+                if tb[i, TB_VALID] == TB_EXACT:
+                    tb[i, TB_VALID] = TB_LOOSE
+                    tb[i, TB_DEBT] = 0
+            else:
+                tb[i, TB_VALID] = TB_UNKNOWN
 
 
 @inline
-def note_z_cleared(tb, xlo, xhi, whole_rows, width, zval, zmask):
-    """After a z clear of columns ``[xlo, xhi]`` (over all the band's rows when
-    ``whole_rows``): tiles cleared whole with the full mask hold exactly one value."""
+def note_z_cleared(tb, xlo, xhi, ylo, yhi, y_lo, y_hi, width, zval, zmask):
+    """After a z clear of columns ``[xlo, xhi]``, rows ``[ylo, yhi]`` of the band
+    ``[y_lo, y_hi]``: tiles cleared whole with the full mask hold exactly one value."""
     v = write_z(0, zval, Z24_MASK)
     full = zmask == Z24_MASK
-    for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
-        tx0 = tx << TILE_SHIFT
-        tx1 = min(tx0 + TILE_W, width) - 1
-        if full and whole_rows and xlo <= tx0 and xhi >= tx1:
-            tb[tx, TB_VALID] = 1
-            tb[tx, TB_LO] = v
-            tb[tx, TB_HI] = v
-        elif full and tb[tx, TB_VALID] != 0:
-            tb[tx, TB_LO] = min(tb[tx, TB_LO], v)
-            tb[tx, TB_HI] = max(tb[tx, TB_HI], v)
-        else:
-            tb[tx, TB_VALID] = 0
+    ntx = (width + TILE_W - 1) >> TILE_SHIFT
+    for ty in range((ylo - y_lo) >> TILE_H_SHIFT, ((yhi - y_lo) >> TILE_H_SHIFT) + 1):
+        ty0 = y_lo + (ty << TILE_H_SHIFT)
+        ty1 = min(ty0 + TILE_H - 1, y_hi)
+        whole_rows = ylo <= ty0 and yhi >= ty1
+        for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
+            i = ty * ntx + tx
+            tx0 = tx << TILE_SHIFT
+            tx1 = min(tx0 + TILE_W, width) - 1
+            if full and whole_rows and xlo <= tx0 and xhi >= tx1:
+                tb[i, TB_VALID] = TB_EXACT
+                tb[i, TB_LO] = v
+                tb[i, TB_HI] = v
+                tb[i, TB_DEBT] = 0
+            elif full and tb[i, TB_VALID] != TB_UNKNOWN:
+                tb[i, TB_LO] = min(tb[i, TB_LO], v)
+                tb[i, TB_HI] = max(tb[i, TB_HI], v)
+                if tb[i, TB_VALID] == TB_EXACT:
+                    tb[i, TB_VALID] = TB_LOOSE
+                    tb[i, TB_DEBT] = 0
+            else:
+                tb[i, TB_VALID] = TB_UNKNOWN

@@ -34,6 +34,7 @@ from vgxsim.state.codes import (
     WORK_FRAGMENTS,
     WORK_SIZE,
     WORK_STENCIL_WRITES,
+    WORK_TILES_SCANNED,
     WORK_TILES_SKIPPED,
 )
 from vgxsim.state.derive import derive_states
@@ -46,7 +47,8 @@ __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL", "WORK_NAM
 #: Names of the work counters, in the order of ``CommandBatch.counters``.
 WORK_NAMES = tuple(name for _, name in sorted([
     (WORK_FRAGMENTS, "fragments"), (WORK_TILES_SKIPPED, "tiles_skipped"),
-    (WORK_BLOCKS_COVERED, "blocks_covered"), (WORK_STENCIL_WRITES, "stencil_writes")]))
+    (WORK_BLOCKS_COVERED, "blocks_covered"), (WORK_STENCIL_WRITES, "stencil_writes"),
+    (WORK_TILES_SCANNED, "tiles_scanned")]))
 
 # Bands are 2**shift rows, 32 to 256.  Tall bands keep the triangle records a band
 # reads dense in memory (many small triangles are latency-bound on those reads);
@@ -112,6 +114,10 @@ class CommandBatch:
         whose depth bounds fail the z test for a whole triangle; run tiles fully
         inside a triangle without edge tests.  Switching either off changes no pixel.
         Class attributes: set them on ``CommandBatch`` to switch every batch.
+    tight_tiles : bool
+        With spans stepped: a triangle's tiles are classified over its own pixels
+        in each band (row spans solved first), not over its bounding box; on by
+        default, a switch that changes no pixel.
     step_spans : bool
         Row spans of a triangle carried from row to row by exact integer steps
         (vgxsim/kernels/spans.py) instead of solved per row; on by default, the
@@ -122,15 +128,17 @@ class CommandBatch:
         their set-up records into band order so that each band reads its own
         front to back (kernels/render.py gather_band_records); on by default, a
         switch that changes nothing drawn.
-    counters : ndarray, shape (4,), int64
+    counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
-        covered without edge tests, fragments of passes that may write stencil.
+        covered without edge tests, fragments of passes that may write stencil,
+        tiles whose depth bounds were read from the z plane.
         :meth:`work` gives them by name.
     """
 
     skip_tiles = True
     cover_blocks = True
+    tight_tiles = True
     step_spans = True
     band_records = True
 
@@ -595,7 +603,8 @@ class CommandBatch:
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
-            self.skip_tiles, self.cover_blocks, self.step_spans, work, (self.t_tex, *tex_table),
+            self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans, work,
+            (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
         if nthreads == 1:

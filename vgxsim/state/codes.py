@@ -119,4 +119,5 @@ WORK_FRAGMENTS = 0  # fragments run through a z or stencil test (or written unte
 WORK_TILES_SKIPPED = 1  # (triangle, tile) pairs decided by the tile's depth bounds
 WORK_BLOCKS_COVERED = 2  # tile rows of a triangle run without edge tests
 WORK_STENCIL_WRITES = 3  # fragments whose stencil value the pass may change
-WORK_SIZE = 4
+WORK_TILES_SCANNED = 4  # tiles whose depth bounds were found by reading the z plane
+WORK_SIZE = 5
