@@ -69,6 +69,7 @@ from .fragment import (
     combine,
     fragment,
     pack_rgba,
+    pack_rgba_i32,
     round_c,
     round_z,
     wrap_z24,
@@ -163,7 +164,7 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    step_spans, tb, runs, work, tex,
+    step_spans, vector_pack, tb, runs, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -255,7 +256,7 @@ def _triangle_rows(
                     sten[uy, ux] = min(max(sv, 0), smax)
             elif mode == MODE_COLOUR:
                 _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
-                             cbuf, zbuf, sten, front, back, tab)
+                             cbuf, zbuf, sten, front, back, tab, vector_pack)
             elif mode == MODE_ZSTENCIL:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
@@ -312,9 +313,11 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colo
 
 @inline_ir
 def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
-                 sten, front, back, tab):
+                 sten, front, back, tab, vector_pack):
     """MODE_COLOUR: shaded span of row ``uy`` with read-only stencil, optional z,
-    simple blend, into ``cbuf`` (the one colour buffer the state draws)."""
+    simple blend, into ``cbuf`` (the one colour buffer the state draws).
+    ``vector_pack``: the stencil-tested loop packs colour through
+    :func:`pack_rgba_i32` (same words, a conversion AVX2 vectorizes)."""
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     lt, eq, gt = cmp_bits(st[S_ZFUNC])
@@ -336,6 +339,23 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)
+        elif dv[D_STENCIL] != 0 and vector_pack:
+            # Heidmann's lit pass (stencil test, ONE+ONE): the switch is tested once
+            # per span, so the loop itself carries no branch on it.
+            for x in range(xl, xr + 1):
+                ux = np.uintp(x)
+                sv = np.int64(sten[uy, ux]) & smask
+                sok = cmp_select(slt, seq, sgt, sref, sv)
+                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                zb = np.int64(zbuf[uy, ux])
+                ok = sok & cmp_select(lt, eq, gt, zi, zb)
+                zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
+                dx = x - x0
+                src = pack_rgba_i32(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx,
+                                    aa + adx * dx)
+                dst = np.int64(cbuf[uy, ux])
+                out = add_sat(src, dst) if add else src
+                cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
         elif dv[D_STENCIL] != 0:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
@@ -509,7 +529,7 @@ def render_bands(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    edge_mode, general_only, skip_tiles, cover_blocks, step_spans, work, tex,
+    edge_mode, general_only, skip_tiles, cover_blocks, step_spans, vector_pack, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -549,6 +569,9 @@ def render_bands(
     skip_tiles, cover_blocks : bool
         Exact work skipping (:mod:`.tiles`): tiles whose depth bounds decide the z
         test; tiles fully inside a triangle (switches, on by default).
+    step_spans, vector_pack : bool
+        Row spans stepped exactly (:mod:`.spans`); colour packed through the int32
+        conversion in the lit-pass loop (switches, on by default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -587,7 +610,7 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, step_spans, tb, runs, bw, tex,
+                    cover_blocks, step_spans, vector_pack, tb, runs, bw, tex,
                 )
             elif kind == KIND_FRAGMENTS:
                 s = r_state[ref]

@@ -116,6 +116,11 @@ class CommandBatch:
         Row spans of a triangle carried from row to row by exact integer steps
         (vgxsim/kernels/spans.py) instead of solved per row; on by default, the
         same spans either way (a class attribute like the two above).
+    vector_pack : bool
+        The stencil-tested Gouraud span loop (Heidmann's lit pass) converts colour
+        through int32 after a float clamp, which AVX2 vectorizes, instead of
+        through int64 (kernels/fragment.py pack_rgba_i32); on by default, the same
+        words either way (a class attribute like the ones above).
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy
@@ -132,6 +137,7 @@ class CommandBatch:
     skip_tiles = True
     cover_blocks = True
     step_spans = True
+    vector_pack = True
     band_records = True
 
     def __init__(self, framebuffer: Framebuffer):
@@ -595,7 +601,8 @@ class CommandBatch:
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
-            self.skip_tiles, self.cover_blocks, self.step_spans, work, (self.t_tex, *tex_table),
+            self.skip_tiles, self.cover_blocks, self.step_spans, self.vector_pack, work,
+            (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
         if nthreads == 1:
