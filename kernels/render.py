@@ -72,6 +72,7 @@ from .fragment import (
     pack_rgba_i32,
     round_c,
     round_z,
+    round_z_i32,
     wrap_z24,
     write_z,
 )
@@ -339,14 +340,15 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)
-        elif dv[D_STENCIL] != 0 and vector_pack:
+        elif (dv[D_STENCIL] != 0 and vector_pack and zmin >= -2147483648
+              and zmax <= 2147483647):
             # Heidmann's lit pass (stencil test, ONE+ONE): the switch is tested once
             # per span, so the loop itself carries no branch on it.
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 sv = np.int64(sten[uy, ux]) & smask
                 sok = cmp_select(slt, seq, sgt, sref, sv)
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+                zi = round_z_i32(za + dzdx * (x - x0), zmin, zmax)
                 zb = np.int64(zbuf[uy, ux])
                 ok = sok & cmp_select(lt, eq, gt, zi, zb)
                 zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb

@@ -15,7 +15,14 @@ from kernel_helpers import assert_planes_equal, render_naive
 from test_spans import _render, _small_scene
 
 from vgxsim.batch import CommandBatch
-from vgxsim.kernels.fragment import channel_i32, pack_rgba, pack_rgba_i32, round_c
+from vgxsim.kernels.fragment import (
+    channel_i32,
+    pack_rgba,
+    pack_rgba_i32,
+    round_c,
+    round_z,
+    round_z_i32,
+)
 
 
 @numba.njit(cache=False)
@@ -54,6 +61,30 @@ def test_channel_i32_equals_round_c():
     np.testing.assert_array_equal(got[:, 0], got[:, 1])
     p = _packs(rng.uniform(-100, 400, (50_000, 4)))
     np.testing.assert_array_equal(p[:, 0], p[:, 1])
+
+
+@numba.njit(cache=False)
+def _z_both(z, zmin, zmax):
+    out = np.empty((z.shape[0], 2), np.int64)
+    for i in range(z.shape[0]):
+        out[i, 0] = round_z(z[i], zmin, zmax)
+        out[i, 1] = round_z_i32(z[i], zmin, zmax)
+    return out
+
+
+def test_round_z_i32_equals_round_z():
+    z = np.array([np.nan, np.inf, -np.inf, -100.5, -100.49, 99.5, 99.49999999999999,
+                  1e10, -1e10, 2.0**63, -2.0**63, 1e300])
+    got = _z_both(z, -100, 100)
+    # By hand: NaN, +-inf, +-2**63 and 1e300 take INT64_MIN in round_z, so zmin.
+    want = [-100, -100, -100, -100, -100, 100, 99, 100, -100, -100, -100, -100]
+    assert list(got[:, 0]) == want
+    assert list(got[:, 1]) == want
+    rng = np.random.default_rng(6)
+    z = rng.uniform(-2.0**24, 2.0**24, 200_000)
+    for lo, hi in ((-0x800000, 0x7FFFFF), (-5000, 70_000), (-2**31, 2**31 - 1)):
+        got = _z_both(z, lo, hi)
+        np.testing.assert_array_equal(got[:, 0], got[:, 1])
 
 
 @pytest.mark.parametrize("seed", range(2))
