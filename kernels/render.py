@@ -248,7 +248,17 @@ def _triangle_rows(
             # costs two (atomic, out-of-line) reference-count updates, several per
             # row of a small triangle, and the threads share the counts' cache line.
             uy = np.uintp(y)
-            if mode == MODE_ZSTENCIL_ADD:
+            if mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
+                    and zmax <= 2147483647:
+                # The shadow-volume pass with z rounded through int32 (vectorizes;
+                # the same values as round_z, kernels/fragment.py round_z_i32).
+                for x in range(xl, xr + 1):
+                    ux = np.uintp(x)
+                    zi = round_z_i32(za + dzdx * (x - x0), zmin, zmax)
+                    passed = cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux]))
+                    sv = np.int64(sten[uy, ux]) + (dpass if passed else dfail)
+                    sten[uy, ux] = min(max(sv, 0), smax)
+            elif mode == MODE_ZSTENCIL_ADD:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)  # unsigned: no negative-index wraparound: vectorizes
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
@@ -572,8 +582,9 @@ def render_bands(
         Exact work skipping (:mod:`.tiles`): tiles whose depth bounds decide the z
         test; tiles fully inside a triangle (switches, on by default).
     step_spans, vector_pack : bool
-        Row spans stepped exactly (:mod:`.spans`); colour packed through the int32
-        conversion in the lit-pass loop (switches, on by default; same planes).
+        Row spans stepped exactly (:mod:`.spans`); colour and z converted through
+        int32 in the lit-pass and z+stencil loops (switches, on by default; same
+        planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple

@@ -117,10 +117,11 @@ class CommandBatch:
         (vgxsim/kernels/spans.py) instead of solved per row; on by default, the
         same spans either way (a class attribute like the two above).
     vector_pack : bool
-        The stencil-tested Gouraud span loop (Heidmann's lit pass) converts colour
+        The stencil-tested Gouraud span loop (Heidmann's lit pass) and the
+        z + stencil INCR/DECR loop (the shadow-volume pass) convert colour and z
         through int32 after a float clamp, which AVX2 vectorizes, instead of
-        through int64 (kernels/fragment.py pack_rgba_i32); on by default, the same
-        words either way (a class attribute like the ones above).
+        through int64 (kernels/fragment.py pack_rgba_i32, round_z_i32); on by
+        default, the same values either way (a class attribute like the above).
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy

@@ -1,10 +1,11 @@
-"""The lit-pass colour packing through int32 (CommandBatch.vector_pack) changes
-nothing drawn.
+"""Colour and z converted through int32 in the lit-pass and z+stencil span loops
+(CommandBatch.vector_pack) change nothing drawn.
 
 :func:`vgxsim.kernels.fragment.channel_i32` is checked against ``round_c`` (the
 numeric model's ``floor(c + 0.5)`` clamped to 0..255) on the awkward inputs (ties,
 NaN, infinities, beyond int32 and int64) and on random values; random scenes with
-an EQUAL/stencil-tested ONE+ONE lit pass and the Heidmann frame are rendered with
+INCR/DECR volume passes and an EQUAL/stencil-tested ONE+ONE lit pass (every plane
+compared) and the Heidmann frame are rendered with
 the switch on and off and compared plane by plane, and against the naive reference.
 """
 
