@@ -131,12 +131,13 @@ def small_triangle_split(rounds: int) -> dict:
     return out
 
 
-RASTER_SWITCHES = ("step_spans", "band_records")  # CommandBatch switches of issue 7
+RASTER_SWITCHES = ("step_spans", "band_records", "vector_pack")  # CommandBatch, issue 7
 
 
 def raster_switches(rounds: int) -> dict:
     """The 10-pixel triangles and the dense scene with the raster switches
-    (``RASTER_SWITCHES``: spans stepped row to row, records copied into band order)
+    (``RASTER_SWITCHES``: spans stepped row to row, records copied into band order,
+    int32 conversions in the lit and z+stencil loops)
     all on and all off, alternating round by round on 1 and 2 threads: wall time and
     the process CPU time spent in CommandBatch.flush (the raster).
 

@@ -69,8 +69,10 @@ from .fragment import (
     combine,
     fragment,
     pack_rgba,
+    pack_rgba_i32,
     round_c,
     round_z,
+    round_z_i32,
     wrap_z24,
     write_z,
 )
@@ -168,7 +170,7 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tight_tiles, step_spans, tb, runs, spans, work, tex,
+    tight_tiles, step_spans, vector_pack, tb, runs, spans, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -309,7 +311,17 @@ def _triangle_rows(
             # costs two (atomic, out-of-line) reference-count updates, several per
             # row of a small triangle, and the threads share the counts' cache line.
             uy = np.uintp(y)
-            if mode == MODE_ZSTENCIL_ADD:
+            if mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
+                    and zmax <= 2147483647:
+                # The shadow-volume pass with z rounded through int32 (vectorizes;
+                # the same values as round_z, kernels/fragment.py round_z_i32).
+                for x in range(xl, xr + 1):
+                    ux = np.uintp(x)
+                    zi = round_z_i32(za + dzdx * (x - x0), zmin, zmax)
+                    passed = cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux]))
+                    sv = np.int64(sten[uy, ux]) + (dpass if passed else dfail)
+                    sten[uy, ux] = min(max(sv, 0), smax)
+            elif mode == MODE_ZSTENCIL_ADD:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)  # unsigned: no negative-index wraparound: vectorizes
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
@@ -318,7 +330,7 @@ def _triangle_rows(
                     sten[uy, ux] = min(max(sv, 0), smax)
             elif mode == MODE_COLOUR:
                 _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
-                             cbuf, zbuf, sten, front, back, tab)
+                             cbuf, zbuf, sten, front, back, tab, vector_pack)
             elif mode == MODE_ZSTENCIL:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
@@ -375,9 +387,11 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colo
 
 @inline_ir
 def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
-                 sten, front, back, tab):
+                 sten, front, back, tab, vector_pack):
     """MODE_COLOUR: shaded span of row ``uy`` with read-only stencil, optional z,
-    simple blend, into ``cbuf`` (the one colour buffer the state draws)."""
+    simple blend, into ``cbuf`` (the one colour buffer the state draws).
+    ``vector_pack``: the stencil-tested loop packs colour through
+    :func:`pack_rgba_i32` (same words, a conversion AVX2 vectorizes)."""
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     lt, eq, gt = cmp_bits(st[S_ZFUNC])
@@ -399,6 +413,24 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)
+        elif (dv[D_STENCIL] != 0 and vector_pack and zmin >= -2147483648
+              and zmax <= 2147483647):
+            # Heidmann's lit pass (stencil test, ONE+ONE): the switch is tested once
+            # per span, so the loop itself carries no branch on it.
+            for x in range(xl, xr + 1):
+                ux = np.uintp(x)
+                sv = np.int64(sten[uy, ux]) & smask
+                sok = cmp_select(slt, seq, sgt, sref, sv)
+                zi = round_z_i32(za + dzdx * (x - x0), zmin, zmax)
+                zb = np.int64(zbuf[uy, ux])
+                ok = sok & cmp_select(lt, eq, gt, zi, zb)
+                zbuf[uy, ux] = wrap_z24(zi) if (ok & zwrite) else zb
+                dx = x - x0
+                src = pack_rgba_i32(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx,
+                                    aa + adx * dx)
+                dst = np.int64(cbuf[uy, ux])
+                out = add_sat(src, dst) if add else src
+                cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
         elif dv[D_STENCIL] != 0:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
@@ -572,7 +604,8 @@ def render_bands(
     c_vals, c_state,
     states, derived, tables,
     front, back, zbuf, sten,
-    edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, work, tex,
+    edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
+    work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -615,6 +648,10 @@ def render_bands(
     tight_tiles : bool
         Classify tiles over a triangle's own pixels in the band (its row spans,
         solved first and kept), not its bounding box (a switch, on by default).
+    step_spans, vector_pack : bool
+        Row spans stepped exactly (:mod:`.spans`); colour and z converted through
+        int32 in the lit-pass and z+stencil loops (switches, on by default; same
+        planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -655,7 +692,8 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, tight_tiles, step_spans, tb, runs, spans, bw, tex,
+                    cover_blocks, tight_tiles, step_spans, vector_pack, tb, runs, spans, bw,
+                    tex,
                 )
             elif kind == KIND_FRAGMENTS:
                 s = r_state[ref]

@@ -122,6 +122,12 @@ class CommandBatch:
         Row spans of a triangle carried from row to row by exact integer steps
         (vgxsim/kernels/spans.py) instead of solved per row; on by default, the
         same spans either way (a class attribute like the two above).
+    vector_pack : bool
+        The stencil-tested Gouraud span loop (Heidmann's lit pass) and the
+        z + stencil INCR/DECR loop (the shadow-volume pass) convert colour and z
+        through int32 after a float clamp, which AVX2 vectorizes, instead of
+        through int64 (kernels/fragment.py pack_rgba_i32, round_z_i32); on by
+        default, the same values either way (a class attribute like the above).
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy
@@ -140,6 +146,7 @@ class CommandBatch:
     cover_blocks = True
     tight_tiles = True
     step_spans = True
+    vector_pack = True
     band_records = True
 
     def __init__(self, framebuffer: Framebuffer):
@@ -603,7 +610,8 @@ class CommandBatch:
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
-            self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans, work,
+            self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
+            self.vector_pack, work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
