@@ -1,6 +1,7 @@
 """Where the time of a 10-pixel triangle goes, stage by stage (issue 7, item 3).
 
     python bench/small_stages.py [--count N] [--area A] [--threads T] [--rounds R]
+                                 [--tile-order PIXELS]
 
 Draws bench/scenes.py small_triangles (Context.draw_arrays: one call of N triangles,
 then a flush) and reports, per stage function, the median over ``rounds`` of the
@@ -31,7 +32,8 @@ import scenes  # noqa: E402
 from vgxsim import threads  # noqa: E402
 
 
-def stage_times(count: int, area: float, nthreads: int, rounds: int) -> dict:
+def stage_times(count: int, area: float, nthreads: int, rounds: int,
+                tile_order: int = 0) -> dict:
     """Median CPU ns per triangle of each function of the run (and ``total``).
 
     Returns
@@ -41,7 +43,7 @@ def stage_times(count: int, area: float, nthreads: int, rounds: int) -> dict:
     """
     threads.set_threads(nthreads)
     numba.set_num_threads(min(nthreads, numba.config.NUMBA_NUM_THREADS))
-    run, n = scenes.small_triangles(count=count, area=area)
+    run, n = scenes.small_triangles(count=count, area=area, tile_order=tile_order)
     run()  # compile and warm up
     samples: dict[str, list[float]] = {}
     for _ in range(rounds):
@@ -63,8 +65,10 @@ def main() -> None:
     ap.add_argument("--area", type=float, default=10.0)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--tile-order", type=int, default=0,
+                    help="submit the triangles sorted by tiles of this many pixels")
     args = ap.parse_args()
-    ns = stage_times(args.count, args.area, args.threads, args.rounds)
+    ns = stage_times(args.count, args.area, args.threads, args.rounds, args.tile_order)
     total = ns.pop("total")
     print(f"{args.count} triangles of {args.area} px, {args.threads} thread(s), "
           f"median of {args.rounds}: {total:.0f} ns/tri CPU = {1e3 / total:.2f} M tri/s")
