@@ -82,15 +82,21 @@ def colour_blend_fill(layers: int = 5):
     return run, layers * W * H
 
 
-def small_triangles(count: int = 200_000, area: float = 10.0, seed: int = 0):
+def small_triangles(count: int = 200_000, area: float = 10.0, seed: int = 0,
+                    tile_order: int = 0):
     """``count`` random triangles of about ``area`` pixels through the array path
-    (Context.draw_arrays: transform, clip, snap, setup, bin, raster)."""
+    (Context.draw_arrays: transform, clip, snap, setup, bin, raster).  ``tile_order``
+    > 0 submits them sorted by the ``tile_order``-pixel tile of their centre (a
+    different image: it measures what framebuffer locality is worth)."""
     ctx = Context(W, H, rgb=True, double=False)
     ctx.matrices.load_projection(orthographic(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0))
     ctx.raster.set(zbuffer=True)
     rng = np.random.default_rng(seed)
     side = np.sqrt(2.0 * area)
     centre = rng.uniform([0, 0], [W, H], size=(count, 2))
+    if tile_order > 0:
+        tile = (centre // tile_order).astype(np.int64)
+        centre = centre[np.argsort(tile[:, 1] * W + tile[:, 0], kind="stable")]
     offs = rng.uniform(-side / 2, side / 2, size=(count, 3, 2))
     pts = (centre[:, None, :] + offs).reshape(-1, 2)
     obj = np.concatenate([pts, rng.uniform(-0.9, 0.9, (pts.shape[0], 1))], axis=1)
