@@ -15,6 +15,7 @@ the same window-space triangles and the timed region is raster only.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import sys
 import time
@@ -211,12 +212,11 @@ def mesa_frame(threads: int) -> dict:
             "threads": threads}
 
 
-def vgxsim_work(rounds: int = 5) -> dict:
-    """The dense frame on vgxsim with exact work skipping on and off (alternating
-    round by round): median process CPU time of the raster (CommandBatch.flush) in
-    s, and the work counters of one frame with each setting."""
-    passes, ntri, nvol = build()
-    run, batch = vgxsim_frame(passes)
+@contextlib.contextmanager
+def flush_cpu_time():
+    """Count the process CPU time spent in CommandBatch.flush (the raster) while the
+    block runs: yields a one-item list whose value the caller may reset between runs.
+    The benchmarks of this directory share it so that they split time the same way."""
     spent = [0.0]
     real_flush = CommandBatch.flush
 
@@ -227,23 +227,35 @@ def vgxsim_work(rounds: int = 5) -> dict:
         finally:
             spent[0] += time.process_time() - t
 
+    CommandBatch.flush = timed_flush
+    try:
+        yield spent
+    finally:
+        CommandBatch.flush = real_flush
+
+
+def vgxsim_work(rounds: int = 5) -> dict:
+    """The dense frame on vgxsim with exact work skipping on and off (alternating
+    round by round): median process CPU time of the raster (CommandBatch.flush) in
+    s, and the work counters of one frame with each setting."""
+    passes, ntri, nvol = build()
+    run, batch = vgxsim_frame(passes)
     switches = ("skip_tiles", "cover_blocks", "tight_tiles")
     samples: dict = {True: [], False: []}
     work = {}
-    CommandBatch.flush = timed_flush
     try:
-        for r in range(rounds + 1):
-            for on in (True, False):
-                for sw in switches:
-                    setattr(CommandBatch, sw, on)
-                spent[0] = 0.0
-                batch.reset_counters()
-                run()
-                work[on] = batch.work()
-                if r:
-                    samples[on].append(spent[0])
+        with flush_cpu_time() as spent:
+            for r in range(rounds + 1):
+                for on in (True, False):
+                    for sw in switches:
+                        setattr(CommandBatch, sw, on)
+                    spent[0] = 0.0
+                    batch.reset_counters()
+                    run()
+                    work[on] = batch.work()
+                    if r:
+                        samples[on].append(spent[0])
     finally:
-        CommandBatch.flush = real_flush
         for sw in switches:
             setattr(CommandBatch, sw, True)
     return {"raster_cpu": float(np.median(samples[True])),

@@ -91,19 +91,10 @@ def small_triangle_split(rounds: int) -> dict:
     """
     from vgxsim.geometry import pipeline as geometry
 
-    spent = [0.0]
-    real_flush = CommandBatch.flush
-
-    def timed_flush(self, *a, **k):
-        t = time.process_time()
-        try:
-            return real_flush(self, *a, **k)
-        finally:
-            spent[0] += time.process_time() - t
-
     out: dict = {}
     keep = geometry.FUSED_FRONT
-    CommandBatch.flush = timed_flush
+    flush_timer = dense_scene.flush_cpu_time()
+    spent = flush_timer.__enter__()
     try:
         for threads in (1, 2):
             numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
@@ -125,7 +116,7 @@ def small_triangle_split(rounds: int) -> dict:
                     "front_cpu": float(np.median(a[:, 1] - a[:, 2])),
                     "raster_cpu": float(np.median(a[:, 2]))}
     finally:
-        CommandBatch.flush = real_flush
+        flush_timer.__exit__(None, None, None)
         geometry.FUSED_FRONT = keep
         numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
     return out
@@ -143,21 +134,12 @@ def raster_switches(rounds: int) -> dict:
 
     Returns {(workload, threads, on): {"wall", "raster_cpu"}} in s.
     """
-    spent = [0.0]
-    real_flush = CommandBatch.flush
-
-    def timed_flush(self, *a, **k):
-        t = time.process_time()
-        try:
-            return real_flush(self, *a, **k)
-        finally:
-            spent[0] += time.process_time() - t
-
     passes, _, _ = dense_scene.build()
     runs = {"small_triangles": scenes.small_triangles()[0],
             "dense_scene": dense_scene.vgxsim_frame(passes)[0]}
     out: dict = {}
-    CommandBatch.flush = timed_flush
+    flush_timer = dense_scene.flush_cpu_time()
+    spent = flush_timer.__enter__()
     try:
         for threads in (1, 2):
             numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
@@ -177,7 +159,7 @@ def raster_switches(rounds: int) -> dict:
                     out[(name, threads, on)] = {"wall": float(np.median(a[:, 0])),
                                                 "raster_cpu": float(np.median(a[:, 1]))}
     finally:
-        CommandBatch.flush = real_flush
+        flush_timer.__exit__(None, None, None)
         for sw in RASTER_SWITCHES:
             setattr(CommandBatch, sw, True)
         numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
