@@ -381,6 +381,7 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
         def fast_paths(on: bool) -> None:
             geometry.FUSED_FRONT = on
             draw.BATCH_LIGHTING = on
+            draw.FLUSH_FRONT = on
 
         out = {}
         # The front end's fast paths (fused geometry pass, lighting over whole groups)

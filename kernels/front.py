@@ -25,9 +25,12 @@ any of them has run, and the drawing order is the input order.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .clip import MAX_POLY, NONFINITE, clip_triangles, outcodes, project_snap
+from .lighting import _shade_vertex
 from .options import jit
 
 HUGE = 1e300  # clip coordinates beyond this are rescaled (vgxsim.geometry.pipeline._tame)
@@ -192,3 +195,91 @@ def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, user, vp
                     rec_tris[n + f, j] = top + fan[f, j]
             top += cv.shape[0]
     return oxf[:top], oyf[:top], ozw[:top], oattr[:top], rec_tris, rec_src
+
+
+@jit
+def light_transform_rows(pos, col, nrm, sent, row_v0, row_v1, row_rec, mvp, light_mode,
+                         modelview, normal_matrix, emission, ambient, diffuse, specular,
+                         shininess, alpha, light_lo, light_hi, lights, lmodel, min_shininess,
+                         clip_v, rgba):
+    """The vertex work of a whole flush in one pass: each primitive row's vertices
+    lit (in their record's modelview, material, lights and lighting model) and taken
+    to clip space (their record's transform).
+
+    The arithmetic is that of :func:`~.lighting.light_object_runs` (eye position in
+    transform.apply's order, divided by w unless 0; normal matrix, normalised; the
+    equation of :func:`~.lighting._shade_vertex`) and of
+    :func:`~.transform.transform_points` for ``p @ mvp`` (rescaled near overflow as
+    ``vgxsim.geometry.pipeline._tame`` does), vertex by vertex, so every
+    value is the one the group-by-group passes give (vgxsim/pipeline/flush_front.py).
+
+    Parameters
+    ----------
+    pos : ndarray, shape (V, 4), float64; col : ndarray, shape (V, 4), float64
+    nrm : ndarray, shape (V, 3), float64; sent : ndarray, shape (V,), bool
+        The decoded vertices (vgxsim.kernels.decode.decode_stream).
+    row_v0, row_v1, row_rec : ndarray, shape (P,), int64
+        Per primitive row, its vertices ``row_v0 .. row_v1 - 1`` and its record.
+    mvp : ndarray, shape (R, 4, 4), float64
+        Per record, object -> clip (row vectors).
+    light_mode : ndarray, shape (R,), int64
+        Per record: 0 the vertex keeps its colour, 1 lit where ``sent`` (LMC_COLOR),
+        2 every vertex lit (lmcolor(3G)).
+    modelview : ndarray, shape (R, 4, 4); normal_matrix : ndarray, shape (R, 3, 3)
+    emission, ambient, diffuse, specular : ndarray, shape (R, 3), float64
+    shininess, alpha : ndarray, shape (R,), float64
+        Per record, its lighting (unused where ``light_mode`` is 0).
+    light_lo, light_hi : ndarray, shape (R,), int64
+        Per record, its rows of ``lights``.
+    lights : ndarray, shape (L, LIGHT_COLUMNS), float64
+    lmodel : ndarray, shape (R, LMODEL_COLUMNS), float64
+    min_shininess : float
+    clip_v : ndarray, shape (V, 4), float64; rgba : ndarray, shape (V, 4), float64
+        Outputs, written in the rows' vertices.
+    """
+    rgb = np.empty(3)
+    for j in range(row_v0.shape[0]):
+        r = row_rec[j]
+        m = mvp[r]
+        mode = light_mode[r]
+        lts = lights[light_lo[r]:light_hi[r]]
+        lm = lmodel[r]
+        e = modelview[r]
+        q = normal_matrix[r]
+        for i in range(row_v0[j], row_v1[j]):
+            p0, p1, p2, p3 = pos[i, 0], pos[i, 1], pos[i, 2], pos[i, 3]
+            big = 0.0
+            finite = True
+            for c in range(4):
+                v = ((p0 * m[0, c] + p1 * m[1, c]) + p2 * m[2, c]) + p3 * m[3, c]
+                clip_v[i, c] = v
+                a = abs(v)
+                if not np.isfinite(a):
+                    finite = False
+                elif a > big:
+                    big = a
+            if finite and big > HUGE:
+                # geometry.pipeline._tame, row by row (as front_vertices does).
+                for c in range(4):
+                    clip_v[i, c] = clip_v[i, c] / big
+            if mode == 0 or (mode == 1 and not sent[i]):
+                for c in range(4):
+                    rgba[i, c] = col[i, c]
+                continue
+            ex = ((p0 * e[0, 0] + p1 * e[1, 0]) + p2 * e[2, 0]) + p3 * e[3, 0]
+            ey = ((p0 * e[0, 1] + p1 * e[1, 1]) + p2 * e[2, 1]) + p3 * e[3, 1]
+            ez = ((p0 * e[0, 2] + p1 * e[1, 2]) + p2 * e[2, 2]) + p3 * e[3, 2]
+            ew = ((p0 * e[0, 3] + p1 * e[1, 3]) + p2 * e[2, 3]) + p3 * e[3, 3]
+            if ew == 0.0:
+                ew = 1.0
+            n0, n1, n2 = nrm[i, 0], nrm[i, 1], nrm[i, 2]
+            nx = (n0 * q[0, 0] + n1 * q[1, 0]) + n2 * q[2, 0]
+            ny = (n0 * q[0, 1] + n1 * q[1, 1]) + n2 * q[2, 1]
+            nz = (n0 * q[0, 2] + n1 * q[1, 2]) + n2 * q[2, 2]
+            length = math.sqrt(nx * nx + ny * ny + nz * nz)
+            if length > 0.0:
+                nx, ny, nz = nx / length, ny / length, nz / length
+            else:
+                nx, ny, nz = 0.0, 0.0, 0.0
+            _shade_vertex(rgba, i, ex / ew, ey / ew, ez / ew, nx, ny, nz, emission, ambient,
+                          diffuse, specular, shininess, alpha, r, lts, lm, min_shininess, rgb)

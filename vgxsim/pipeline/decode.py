@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vgxsim.geometry.pipeline import _plain_batch
 from vgxsim.geometry.transform import apply
 from vgxsim.kernels.decode import assemble_triangles, decode_stream
 from vgxsim.kernels.texture import decode_texcoords
@@ -36,7 +37,7 @@ from vgxsim.stream.opcodes import (
     TMESH,
 )
 
-from . import draw
+from . import draw, flush_front
 from .draw import commit_triangles, defer_triangles, draw_arrays
 
 _TRIANGLES = np.zeros(16, bool)
@@ -104,6 +105,32 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears
     if ctx.select_hook is not None:
         _select_prims(ctx, records, pos, prims, swaps, clears)
         return
+    if draw.FLUSH_FRONT and tc is None and _plain_batch(ctx.raw_batch):
+        fast = flush_front.fast_rows(records, prims)
+        if fast.all():
+            commit_triangles(ctx)  # queued before this flush's rows
+            flush_front.draw_rows(ctx, records, pos, col, nrm, sent, prims, swaps, clears,
+                                  _clear)
+            return
+        if fast.any():
+            # Runs of rows the flush pass takes, between runs of rows that need the
+            # group-by-group path, in order.
+            cuts = (np.flatnonzero(fast[1:] != fast[:-1]) + 1).tolist()
+            for a, b in zip([0, *cuts], [*cuts, npr], strict=True):
+                if fast[a]:
+                    commit_triangles(ctx)
+                    flush_front.draw_rows(ctx, records, pos, col, nrm, sent, prims[a:b],
+                                          swaps, clears, _clear)
+                else:
+                    _draw_groups(ctx, records, pos, col, nrm, sent, prims[a:b], swaps, tc,
+                                 clears)
+            return
+    _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears)
+
+
+def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) -> None:
+    """Draw primitive rows group by group (the path without ``draw.FLUSH_FRONT``)."""
+    npr = prims.shape[0]
     kinds = prims[:, P_KIND]
     tri = _TRIANGLES[kinds]
     if draw.MERGE_FRAGMENT_STATES:

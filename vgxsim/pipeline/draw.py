@@ -34,6 +34,17 @@ MERGE_FRAGMENT_STATES = True
 #: False: one lighting pass per group (tests/pipeline/test_batched_lighting.py).
 BATCH_LIGHTING = True
 
+#: Fast-path switch: at a flush, the triangle primitives whose records need only
+#: transform, one-sided lighting, clipping, projection and set-up go through a
+#: constant number of passes (vgxsim/pipeline/flush_front.py: one lighting and
+#: transform pass over all their vertices, one clip + set-up call per run of rows
+#: between clears that project alike) instead of group by group.  False: the
+#: group-by-group path for every row (tests/pipeline/test_flush_front.py compares).
+#: Off by default for now: on, it bypasses the paths that BATCH_LIGHTING and
+#: FUSED_FRONT select for the 1991 frame, which their own tests count on;
+#: bench/calls.py's fast_paths switches it on with them.
+FLUSH_FRONT = False
+
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
     "polygon", "tmesh", "qstrip", "line", "closedline", "point")
 

@@ -1,0 +1,137 @@
+"""The flush-time front end in a constant number of passes (``draw.FLUSH_FRONT``,
+vgxsim/pipeline/flush_front.py) changes no plane.
+
+The switch is checked on the 1991 shadow frame (lit floor and cubes under two
+lights, shadow faces whose records differ in stencil state only, clears between the
+passes) and on the random IRIS GL call sequences of tests/stream (every primitive
+kind, lines and points between triangles, lmcolor, materials, shading model and
+write masks changing between primitives), drawn immediately and from display
+objects: colour, z and stencil must be identical, and the flush pass must really
+have drawn.  Its kernel is checked against the kernels it stands for:
+``light_object_runs`` (lighting) and ``transform_points`` (clip coordinates).
+"""
+
+import numpy as np
+import pytest
+from stream.random_calls import SEEDS, render, sequence
+
+from vgxsim.geometry.pipeline import _tame
+from vgxsim.gl._core import session
+from vgxsim.kernels.front import light_transform_rows
+from vgxsim.kernels.lighting import light_object_runs
+from vgxsim.kernels.transform import transform_points
+from vgxsim.pipeline import draw, flush_front
+
+
+def _counting(monkeypatch):
+    calls = [0]
+    real = flush_front.draw_rows
+
+    def counted(*a, **k):
+        calls[0] += 1
+        return real(*a, **k)
+
+    monkeypatch.setattr(flush_front, "draw_rows", counted)
+    return calls
+
+
+def _heidmann(monkeypatch, on: bool):
+    from vgxsim.examples import heidmann1991 as h91
+    from vgxsim.gl._core import current
+
+    monkeypatch.setattr(draw, "FLUSH_FRONT", on)
+    calls = _counting(monkeypatch)
+    session.reset()
+    planes = {}
+
+    def hook(i):
+        ctx = current("test")
+        ctx.flush()
+        planes[i] = (ctx.fb.stencil.copy(), ctx.fb.z.copy())
+
+    try:
+        img = h91.render(320, 256, stencil_hook=hook)
+    finally:
+        session.reset()
+    return img, planes, calls[0]
+
+
+def test_flush_front_gives_the_same_heidmann_frame(monkeypatch):
+    want_img, want, none = _heidmann(monkeypatch, False)
+    img, got, passes = _heidmann(monkeypatch, True)
+    assert none == 0 and passes > 0  # the switch really selects the path
+    assert want and got.keys() == want.keys()
+    np.testing.assert_array_equal(img, want_img)
+    for light in want:
+        np.testing.assert_array_equal(got[light][0], want[light][0])
+        np.testing.assert_array_equal(got[light][1], want[light][1])
+
+
+@pytest.mark.parametrize("objects", [False, True])
+def test_flush_front_switch_gives_identical_planes_on_random_calls(objects, monkeypatch):
+    calls_seen = _counting(monkeypatch)
+    for seed in SEEDS:
+        for n in (40, 120):
+            calls = sequence(seed, n)
+            session.reset()
+            monkeypatch.setattr(draw, "FLUSH_FRONT", False)
+            want = render(calls, objects=objects, seed=seed)
+            session.reset()
+            monkeypatch.setattr(draw, "FLUSH_FRONT", True)
+            got = render(calls, objects=objects, seed=seed)
+            session.reset()
+            for k in want:
+                assert np.array_equal(got[k], want[k]), (seed, n, k)
+    assert calls_seen[0] > len(SEEDS)  # the flush pass drew in most sequences
+
+
+def test_light_transform_rows_gives_the_lighting_and_transform_kernels_values():
+    """Rows of three records (two lit, one lit where the normal was sent last, one
+    unlit) under two light tables: per vertex, the colour light_object_runs gives
+    with the record's run and lights, and the clip position transform_points gives
+    with the record's matrix."""
+    rng = np.random.default_rng(5)
+    nv, nrec = 60, 3
+    pos = np.concatenate([rng.normal(size=(nv, 3)) * 4, np.ones((nv, 1))], axis=1)
+    pos[7, 3] = 0.0  # w = 0 in eye space too: divided by 1
+    pos[8, :3] = [1e305, -3e304, 2e305]  # clip coordinates rescaled near overflow
+    col = rng.random((nv, 4))
+    nrm = rng.normal(size=(nv, 3))
+    nrm[3] = 0.0  # zero normal: emission and ambient only
+    sent = rng.random(nv) < 0.6
+    row_v0 = np.array([0, 10, 25, 40], np.int64)
+    row_v1 = np.array([10, 25, 40, 60], np.int64)
+    row_rec = np.array([0, 1, 2, 0], np.int64)
+    mvp = rng.normal(size=(nrec, 4, 4))
+    light_mode = np.array([2, 1, 0], np.int64)
+    modelview = rng.normal(size=(nrec, 4, 4))
+    normal_matrix = rng.normal(size=(nrec, 3, 3))
+    terms = [rng.random((nrec, 3)) for _ in range(4)]
+    shininess = np.array([20.0, 0.5, 3.0])
+    alpha = rng.random(nrec)
+    lights = rng.random((3, 16))
+    lights[:, 0] = [1.0, 0.0, 1.0]  # local, directional, local
+    lights[:, 10] = [0.0, 0.0, 1.0]  # the last one a spot
+    lights[2, 14] = 0.2
+    light_lo = np.array([0, 2, 0], np.int64)
+    light_hi = np.array([2, 3, 0], np.int64)
+    lmodel = np.array([[0.2, 0.2, 0.2, 0.0, 1.0, 0.0, 0.0],
+                       [0.1, 0.0, 0.3, 1.0, 1.0, 0.05, 0.01],
+                       [0.0] * 7])
+    clip_v = np.zeros((nv, 4))
+    rgba = np.zeros((nv, 4))
+    light_transform_rows(pos, col, nrm, sent, row_v0, row_v1, row_rec, mvp, light_mode,
+                         modelview, normal_matrix, *terms, shininess, alpha, light_lo,
+                         light_hi, lights, lmodel, 1.0, clip_v, rgba)
+    for a, b, r in zip(row_v0, row_v1, row_rec, strict=True):
+        np.testing.assert_array_equal(clip_v[a:b],
+                                      _tame(transform_points(pos[a:b], mvp[r])))
+        lit = sent[a:b] if light_mode[r] == 1 else np.full(b - a, light_mode[r] == 2)
+        want = light_object_runs(pos[a:b], nrm[a:b], col[a:b], lit, np.zeros(b - a, np.int64),
+                                 modelview[r:r + 1], normal_matrix[r:r + 1],
+                                 *(t[r:r + 1] for t in terms), shininess[r:r + 1],
+                                 alpha[r:r + 1], lights[light_lo[r]:light_hi[r]],
+                                 lmodel[r], 1.0)
+        np.testing.assert_array_equal(rgba[a:b], want)
+    assert not np.array_equal(rgba[0:10], col[0:10])  # lit rows really changed colour
+    np.testing.assert_array_equal(rgba[25:40], col[25:40])  # the unlit record kept it

@@ -1,0 +1,318 @@
+"""The flush-time front end in a constant number of passes (``draw.FLUSH_FRONT``).
+
+The group-by-group path (:func:`vgxsim.pipeline.decode._draw_prims`) walks the
+decoded primitives group by group: per group it lights (or collects the group for
+:func:`.draw.shade_groups`), defers, and per run of groups that project alike runs
+the geometry passes.  The 1991 frame has about fifteen groups and five geometry
+passes per flush, each a few hundred triangles, so the front end's time is the
+Python around the kernels, not the kernels.
+
+Here, for the primitives whose records need nothing but transform, lighting,
+clipping, projection and set-up (below, :func:`_plain_record`), the whole flush is:
+
+1. one :func:`~vgxsim.kernels.decode.assemble_triangles` over all their rows;
+2. one :func:`~vgxsim.kernels.front.light_transform_rows` pass: every vertex lit in
+   its record's lighting and taken to clip space by its record's transform, written
+   into one array each (no per-group arrays, no concatenation);
+3. per *segment* -- consecutive rows between clears whose records share viewport,
+   depth range, user clip planes, subpixel mode, shading model and whether colour is
+   written (what one clip + project + set-up call must share) -- one
+   :func:`vgxsim.geometry.pipeline.draw_triangles` on the clip coordinates (the
+   1991 frame: five segments per flush).
+
+Every value is computed vertex by vertex or triangle by triangle in the arithmetic
+of the group-by-group passes (kernels/front.py), so the planes are the same
+(tests/pipeline/test_flush_front.py).  Rows that need more (concave polygons,
+lines and points, textures and texgen, depth cueing, fog, two-sided lighting, an
+lmcolor override, the numpy lighting form) go through the group-by-group path in
+order, between the segments.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vgxsim.geometry.pipeline import Viewing, _guard, draw_triangles
+from vgxsim.kernels.clip import clip_triangles, project_snap
+from vgxsim.kernels.decode import assemble_triangles
+from vgxsim.kernels.front import light_transform_rows
+from vgxsim.kernels.lighting import LIGHT_COLUMNS, LMODEL_COLUMNS
+from vgxsim.lighting import equation
+from vgxsim.state.raster import FLAT, needs_colour
+from vgxsim.stream.opcodes import (
+    CLEAR_KIND,
+    P_CLEAR,
+    P_KIND,
+    P_LMCOLOR_SET,
+    P_STATE,
+    P_V0,
+    P_V1,
+    PMV,
+    POLYGON,
+    QSTRIP,
+    TMESH,
+)
+
+_TRIANGLES = np.zeros(16, bool)
+_TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
+
+_MATERIAL_TERMS = ("emission", "ambient", "diffuse", "specular")
+
+
+def _plain_record(state) -> bool:
+    """Whether a record's triangles need only transform, lighting (one-sided, the
+    kernel form), clipping, projection and set-up."""
+    ls = state.lighting
+    return (not state.concave and state.texgen_eye is None and state.depthcue is None
+            and state.fog is None and state.raster.texture == 0
+            and (ls is None or (not ls.lmodel.twoside and equation.JIT_LIGHTING)))
+
+
+def _overridden(state) -> bool:
+    """Whether lmcolor colours override the material when set (draw.override_of)."""
+    return state.lmcolor_mode not in (0, 6)
+
+
+def fast_rows(records, prims: np.ndarray) -> np.ndarray:
+    """Per primitive row, whether it takes the flush pass: a clear, or a triangle
+    primitive of a plain record without an lmcolor override.
+
+    Returns
+    -------
+    ndarray, shape (P,), bool
+    """
+    # Per record (and one entry more, for a clear before any record: index -1):
+    # 1 plain, 2 plain but overridden by a set lmcolor colour, 0 neither.
+    code = np.array([(1 + _overridden(r)) if _plain_record(r) else 0 for r in records]
+                    + [0], np.int64)
+    c = code[prims[:, P_STATE]]
+    kinds = prims[:, P_KIND]
+    ok = _TRIANGLES[kinds] & ((c == 1) | ((c == 2) & (prims[:, P_LMCOLOR_SET] == 0)))
+    return ok | (kinds == CLEAR_KIND)
+
+
+class _Tables:
+    """Per record used by a flush (dense index ``0 .. len(used) - 1``), what
+    :func:`light_transform_rows` reads, in kernel argument order, and its segment
+    class (:func:`draw_rows`)."""
+
+    def __init__(self, records, used: list[int]):
+        states = [records[i] for i in used]
+        self.mvp = np.array([st.mvp for st in states], np.float64).reshape(-1, 4, 4)
+        eye = np.eye(4)
+        modes, mvs, nms, mats, lms, spans, klass, proj = [], [], [], [], [], [], [], []
+        tables: list[np.ndarray] = []
+        light_rows: dict[tuple, tuple[int, int]] = {}
+        classes: dict[tuple, int] = {}
+        projections: dict[tuple, int] = {}
+        top = 0
+        for st in states:
+            rs = st.raster
+            colour = needs_colour(rs)
+            # user_planes by identity: the common NO_PLANES is one object, and two
+            # equal arrays in different objects only cost a segment break.
+            pkey = (st.viewport, st.depth, rs.subpixel, id(st.user_planes))
+            p = projections.setdefault(pkey, len(projections))
+            proj.append(p)
+            klass.append(classes.setdefault((p, rs.shademodel, colour), len(classes)))
+            ls = st.lighting
+            if ls is None or not colour:  # keeps its colour (light_mode 0)
+                modes.append(0)
+                mvs.append(eye)
+                nms.append(eye[:3, :3])
+                mats.append(_NO_MATERIAL)
+                lms.append(_NO_LMODEL)
+                spans.append((0, 0))
+                continue
+            modes.append(2 if st.lmcolor_mode != 0 else 1)
+            mvs.append(ls.modelview)
+            nms.append(ls.normal_matrix)
+            m = ls.material
+            mats.append((*m.emission, *m.ambient, *m.diffuse, *m.specular, m.shininess,
+                         m.alpha))
+            lms.append(_lmodel_row(ls.lmodel))
+            lkey = tuple(id(e) for e in ls.lights)
+            span = light_rows.get(lkey)
+            if span is None:
+                table = equation._light_table(ls.lights)
+                span = light_rows[lkey] = (top, top + table.shape[0])
+                tables.append(table)
+                top += table.shape[0]
+            spans.append(span)
+        self.light_mode = np.array(modes, np.int64)
+        self.modelview = np.array(mvs, np.float64).reshape(-1, 4, 4)
+        self.normal_matrix = np.array(nms, np.float64).reshape(-1, 3, 3)
+        mat = np.array(mats, np.float64).reshape(-1, 14)
+        self.terms = [np.ascontiguousarray(mat[:, k:k + 3]) for k in (0, 3, 6, 9)]
+        self.shininess = np.ascontiguousarray(mat[:, 12])
+        self.alpha = np.ascontiguousarray(mat[:, 13])
+        sp = np.array(spans, np.int64).reshape(-1, 2)
+        self.light_lo = np.ascontiguousarray(sp[:, 0])
+        self.light_hi = np.ascontiguousarray(sp[:, 1])
+        self.lmodel = np.array(lms, np.float64).reshape(-1, LMODEL_COLUMNS)
+        self.lights = np.concatenate(tables) if tables else np.zeros((0, LIGHT_COLUMNS))
+        self.klass = np.array(klass, np.int64)
+        self.projections = len(projections)
+
+
+_NO_MATERIAL = (0.0,) * 14
+_NO_LMODEL = (0.0,) * LMODEL_COLUMNS
+_LMODEL_ROWS: dict[int, tuple] = {}  # id(LightModel) -> (LightModel, row)
+
+
+def _lmodel_row(lmodel) -> np.ndarray:
+    """The kernel's light-model row, once per lighting model object (definitions
+    are replaced, never mutated; the entry keeps the object, so its id stays its)."""
+    hit = _LMODEL_ROWS.get(id(lmodel))
+    if hit is None or hit[0] is not lmodel:
+        if len(_LMODEL_ROWS) > 256:
+            _LMODEL_ROWS.clear()
+        hit = _LMODEL_ROWS[id(lmodel)] = (lmodel, equation._lmodel_row(lmodel))
+    return hit[1]
+
+
+def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears,
+              clear_fn) -> None:
+    """Draw primitive rows that :func:`fast_rows` accepts, in order.
+
+    Parameters
+    ----------
+    rows : ndarray, shape (P, PRIM_COLUMNS), int64
+        Decoded primitive rows (clears and triangle primitives).
+    pos, col, nrm, sent, swaps
+        The decoded vertices and swaptmesh positions (decode_stream).
+    clears : list
+        The stream's clear arguments (CLEAR rows index it).
+    clear_fn : callable
+        ``clear_fn(ctx, *clears[i])`` does a clear (vgxsim.pipeline.decode._clear).
+    """
+    rows = rows[(rows[:, P_KIND] == CLEAR_KIND) | (rows[:, P_V1] > rows[:, P_V0])]
+    is_clear = rows[:, P_KIND] == CLEAR_KIND
+    tri_rows = rows[~is_clear]
+    if tri_rows.shape[0] == 0:
+        for r in rows.tolist():
+            clear_fn(ctx, *clears[r[P_CLEAR]])
+        return
+    # The rows' vertices are back to back (the decoder writes them in order).
+    vlo, vhi = int(tri_rows[0, P_V0]), int(tri_rows[-1, P_V1])
+    tri_rows = tri_rows - np.array([0, vlo, vlo, 0, 0, 0, 0], np.int64)
+    # The records used, in index order, and each row's dense number among them (a
+    # look-up table: records are few, rows many).
+    si = tri_rows[:, P_STATE]
+    seen = np.zeros(len(records), bool)
+    seen[si] = True
+    used = np.flatnonzero(seen)
+    dense = np.cumsum(seen) - 1
+    rec_of = dense[si]
+    used_l = used.tolist()
+    tab = _Tables(records, used_l)
+    nv = vhi - vlo
+    clip_v = np.empty((nv, 4))
+    rgba = np.empty((nv, 4))
+    row_v0 = np.ascontiguousarray(tri_rows[:, P_V0])
+    row_v1 = np.ascontiguousarray(tri_rows[:, P_V1])
+    light_transform_rows(pos[vlo:vhi], col[vlo:vhi], nrm[vlo:vhi], sent[vlo:vhi], row_v0,
+                         row_v1, rec_of, tab.mvp, tab.light_mode, tab.modelview,
+                         tab.normal_matrix, *tab.terms, tab.shininess, tab.alpha, tab.light_lo,
+                         tab.light_hi, tab.lights, tab.lmodel, equation._MIN_SHININESS, clip_v,
+                         rgba)
+    tris, prov, tri_row = assemble_triangles(tri_rows, 0, swaps)
+    # Segments: a clear is one on its own; consecutive triangle rows of one class
+    # form one.  They are drawn in row order, each before the clear after it.
+    klass = np.full(rows.shape[0], -1, np.int64)
+    klass[~is_clear] = tab.klass[rec_of]
+    brk = np.ones(rows.shape[0], bool)
+    brk[1:] = (klass[1:] != klass[:-1]) | is_clear[1:] | is_clear[:-1]
+    seg_of_row = np.cumsum(brk) - 1
+    nseg = int(seg_of_row[-1]) + 1
+    row_seg = seg_of_row[~is_clear]  # per triangle row, nondecreasing
+    tri_seg = row_seg[tri_row]  # per triangle, nondecreasing
+    heads = np.flatnonzero(brk).tolist()
+    head_rec = rows[brk, P_STATE].tolist()
+    head_clear = is_clear[brk].tolist()
+    rasters = [records[i].raster for i in used_l]
+    # Per triangle, its raster (a dense number; records may share one).
+    rast_ids: dict[int, int] = {}
+    rast_of_rec = np.array([rast_ids.setdefault(id(r), len(rast_ids)) for r in rasters],
+                           np.int64)
+    distinct = list({id(r): r for r in rasters}.values())
+    tri_rast = rast_of_rec[rec_of[tri_row]]
+    if tab.projections != 1:
+        _draw_segments(ctx, records, rows, heads, head_rec, head_clear, clears, clear_fn,
+                       nseg, tri_seg, tris, prov, tri_rast, distinct, row_seg, row_v0,
+                       row_v1, clip_v, rgba)
+        return
+    # One projection for every triangle row: one clip and one projection pass for
+    # them all, then one set-up call per segment.
+    st = records[used_l[0]]
+    rs0 = st.raster
+    l, r, b, t = st.viewport
+    gx, gy = _guard(st.viewport)
+    out_v, out_attr, out_tris, out_src = clip_triangles(clip_v, rgba, tris, gx, gy,
+                                                        st.user_planes)
+    xf, yf, zw = project_snap(out_v, l, r, b, t, float(st.depth[0]), float(st.depth[1]),
+                              rs0.subpixel)
+    t_cut = np.searchsorted(tri_seg[out_src], np.arange(nseg + 1)).tolist()
+    out_rast = tri_rast[out_src]
+    flat = None
+    batch = ctx.raw_batch
+    for s, h in enumerate(heads):
+        if head_clear[s]:
+            clear_fn(ctx, *clears[int(rows[h, P_CLEAR])])
+            continue
+        ta, tb = t_cut[s], t_cut[s + 1]
+        if tb == ta:
+            continue
+        rs = records[head_rec[s]].raster
+        colour = out_attr if needs_colour(rs) else None
+        seg_flat = None
+        if colour is not None and rs.shademodel == FLAT:
+            if flat is None:
+                flat = rgba[prov]  # per input triangle: its provoking vertex's colour
+            seg_flat = flat
+        ids = out_rast[ta:tb]
+        if (ids != ids[0]).any():
+            present = np.unique(ids)
+            states = [distinct[i] for i in present.tolist()]
+            batch.add_triangles_states(xf, yf, zw, colour, out_tris[ta:tb], out_src[ta:tb],
+                                       seg_flat, states, np.searchsorted(present, ids))
+        else:
+            batch.add_triangles(xf, yf, zw, colour, out_tris[ta:tb], out_src[ta:tb],
+                                seg_flat, distinct[int(ids[0])])
+
+
+def _draw_segments(ctx, records, rows, heads, head_rec, head_clear, clears, clear_fn, nseg,
+                   tri_seg, tris, prov, tri_rast, distinct, row_seg, row_v0, row_v1, clip_v,
+                   rgba) -> None:
+    """:func:`draw_rows`' segments through one geometry pass each (records of
+    several viewports, depth ranges, snapping modes or user clip planes)."""
+    segs = np.arange(nseg + 1)
+    t_cut = np.searchsorted(tri_seg, segs).tolist()
+    r_cut = np.searchsorted(row_seg, segs)
+    v_first = row_v0[np.minimum(r_cut[:-1], row_v0.shape[0] - 1)].tolist()
+    v_last = row_v1[np.maximum(r_cut[1:] - 1, 0)].tolist()
+    batch = ctx.raw_batch
+    for s, h in enumerate(heads):
+        if head_clear[s]:
+            clear_fn(ctx, *clears[int(rows[h, P_CLEAR])])
+            continue
+        ta, tb = t_cut[s], t_cut[s + 1]
+        if tb == ta:
+            continue
+        v0, v1 = v_first[s], v_last[s]
+        st = records[head_rec[s]]
+        rs = st.raster
+        colour = rgba[v0:v1] if needs_colour(rs) else None
+        flat = rgba[prov[ta:tb]] if (colour is not None and rs.shademodel == FLAT) else None
+        ids = tri_rast[ta:tb]
+        tri_states = None
+        if (ids != ids[0]).any():
+            present = np.unique(ids)
+            seg_rasters = [distinct[i] for i in present.tolist()]
+            tri_states = (seg_rasters, np.searchsorted(present, ids))
+            rs = seg_rasters[0]
+        else:
+            rs = distinct[int(ids[0])]
+        draw_triangles(batch, rs, Viewing(st.mvp, st.viewport, st.depth, st.user_planes),
+                       None, colour, tris[ta:tb] - v0, flat, clip_coords=clip_v[v0:v1],
+                       tri_states=tri_states)
