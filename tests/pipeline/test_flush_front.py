@@ -135,3 +135,57 @@ def test_light_transform_rows_gives_the_lighting_and_transform_kernels_values():
         np.testing.assert_array_equal(rgba[a:b], want)
     assert not np.array_equal(rgba[0:10], col[0:10])  # lit rows really changed colour
     np.testing.assert_array_equal(rgba[25:40], col[25:40])  # the unlit record kept it
+
+
+def _with_projection_changes(calls, seed: int):
+    """``calls`` with viewport, lsetdepth, subpixel and clipplane calls inserted at
+    primitive boundaries, so one flush holds records of several projections (the
+    flush pass then clips and projects per run of rows)."""
+    from stream.random_calls import H, W
+
+    from vgxsim import GL
+
+    rng = np.random.default_rng(500 + seed)
+    out, depth = [], 0
+    for name, args in calls:
+        out.append((name, args))
+        depth += name.startswith("bgn") - name.startswith("end")
+        if depth or rng.random() > 0.25:
+            continue
+        r = rng.random()
+        if r < 0.3:
+            l, b = (int(v) for v in rng.integers(0, 12, 2))
+            out.append(("viewport", (l, int(rng.integers(l + 8, W)), b,
+                                     int(rng.integers(b + 8, H)))))
+        elif r < 0.5:
+            out.append(("lsetdepth", (0, int(rng.integers(0x100000, 0x7FFFFF)))))
+        elif r < 0.7:
+            out.append(("subpixel", (int(rng.integers(0, 2)),)))
+        elif r < 0.85:
+            out.append(("clipplane", (0, GL.CP_DEFINE,
+                                      tuple(float(v) for v in (*rng.normal(size=2), 0.0,
+                                                               rng.uniform(0, W))))))
+            out.append(("clipplane", (0, GL.CP_ON)))
+        else:
+            out.append(("clipplane", (0, GL.CP_OFF)))
+    return out
+
+
+def test_flush_front_switch_gives_identical_planes_across_projections(monkeypatch):
+    """Viewports, depth ranges, snapping modes and user clip planes changing
+    between primitives of one flush: identical planes with the switch on and off."""
+    calls_seen = _counting(monkeypatch)
+    drawn = 0
+    for seed in SEEDS:
+        calls = _with_projection_changes(sequence(seed, 120), seed)
+        session.reset()
+        monkeypatch.setattr(draw, "FLUSH_FRONT", False)
+        want = render(calls)
+        session.reset()
+        monkeypatch.setattr(draw, "FLUSH_FRONT", True)
+        got = render(calls)
+        session.reset()
+        for k in want:
+            assert np.array_equal(got[k], want[k]), (seed, k)
+        drawn += bool(want["rgba"][..., :3].any())
+    assert calls_seen[0] > len(SEEDS) and drawn > len(SEEDS) // 2
