@@ -29,6 +29,8 @@ import math
 
 import numpy as np
 
+from vgxsim.stream.opcodes import CLEAR_KIND, P_KIND
+
 from .clip import MAX_POLY, NONFINITE, clip_triangles, outcodes, project_snap
 from .lighting import _shade_vertex
 from .options import jit
@@ -283,3 +285,74 @@ def light_transform_rows(pos, col, nrm, sent, row_v0, row_v1, row_rec, mvp, ligh
                 nx, ny, nz = 0.0, 0.0, 0.0
             _shade_vertex(rgba, i, ex / ew, ey / ew, ez / ew, nx, ny, nz, emission, ambient,
                           diffuse, specular, shininess, alpha, r, lts, lm, min_shininess, rgb)
+
+
+@jit
+def flush_segments(rows, rec_of, klass, rast, tri_row, out_src):
+    """Cut a flush's rows into segments and its clipped triangles among them.
+
+    A CLEAR row is a segment of its own; consecutive triangle rows whose records
+    share a class (one clip, projection and set-up call) form one
+    (vgxsim/pipeline/flush_front.py).
+
+    Parameters
+    ----------
+    rows : ndarray, shape (P, PRIM_COLUMNS), int64
+        Clears and triangle primitives, in order.
+    rec_of : ndarray, shape (Pt,), int64
+        Per triangle row (the non-clear rows, in order), its record's dense number.
+    klass, rast : ndarray, shape (R,), int64
+        Per record, its segment class and its raster's number.
+    tri_row : ndarray, shape (T,), int64
+        Per assembled triangle, its triangle row.
+    out_src : ndarray, shape (T2,), int64
+        Per clipped triangle, its assembled triangle (nondecreasing).
+
+    Returns
+    -------
+    segs : ndarray, shape (S, 5), int64
+        Per segment: its first row, 1 for a clear (else 0), its clipped triangles
+        ``t0 .. t1 - 1``, and 1 when they are of several rasters.
+    out_rast : ndarray, shape (T2,), int64
+        Per clipped triangle, its raster's number.
+    """
+    np_ = rows.shape[0]
+    segs = np.zeros((np_, 5), np.int64)
+    row_seg = np.empty(rec_of.shape[0], np.int64)
+    s = -1
+    prev = -2  # the previous row's class; -1 for a clear
+    k = 0  # triangle rows seen
+    for p in range(np_):
+        if rows[p, P_KIND] == CLEAR_KIND:
+            s += 1
+            segs[s, 0] = p
+            segs[s, 1] = 1
+            prev = -1
+            continue
+        c = klass[rec_of[k]]
+        if c != prev:
+            s += 1
+            segs[s, 0] = p
+            prev = c
+        row_seg[k] = s
+        k += 1
+    nseg = s + 1
+    out_rast = np.empty(out_src.shape[0], np.int64)
+    for q in range(nseg):
+        segs[q, 2] = -1
+    for t in range(out_src.shape[0]):
+        r = tri_row[out_src[t]]
+        q = row_seg[r]
+        v = rast[rec_of[r]]
+        out_rast[t] = v
+        if segs[q, 2] < 0:
+            segs[q, 2] = t
+            segs[q, 4] = 0
+        elif out_rast[segs[q, 2]] != v:
+            segs[q, 4] = 1
+        segs[q, 3] = t + 1
+    for q in range(nseg):
+        if segs[q, 2] < 0:
+            segs[q, 2] = 0
+            segs[q, 3] = 0
+    return segs[:nseg], out_rast

@@ -35,7 +35,7 @@ import numpy as np
 from vgxsim.geometry.pipeline import Viewing, _guard, draw_triangles
 from vgxsim.kernels.clip import clip_triangles, project_snap
 from vgxsim.kernels.decode import assemble_triangles
-from vgxsim.kernels.front import light_transform_rows
+from vgxsim.kernels.front import flush_segments, light_transform_rows
 from vgxsim.kernels.lighting import LIGHT_COLUMNS, LMODEL_COLUMNS
 from vgxsim.lighting import equation
 from vgxsim.state.raster import FLAT, needs_colour
@@ -99,7 +99,6 @@ class _Tables:
     def __init__(self, records, used: list[int]):
         states = [records[i] for i in used]
         self.mvp = np.array([st.mvp for st in states], np.float64).reshape(-1, 4, 4)
-        eye = np.eye(4)
         modes, mvs, nms, mats, lms, spans, klass, proj = [], [], [], [], [], [], [], []
         tables: list[np.ndarray] = []
         light_rows: dict[tuple, tuple[int, int]] = {}
@@ -118,8 +117,8 @@ class _Tables:
             ls = st.lighting
             if ls is None or not colour:  # keeps its colour (light_mode 0)
                 modes.append(0)
-                mvs.append(eye)
-                nms.append(eye[:3, :3])
+                mvs.append(_EYE4)
+                nms.append(_EYE3)
                 mats.append(_NO_MATERIAL)
                 lms.append(_NO_LMODEL)
                 spans.append((0, 0))
@@ -143,18 +142,21 @@ class _Tables:
         self.modelview = np.array(mvs, np.float64).reshape(-1, 4, 4)
         self.normal_matrix = np.array(nms, np.float64).reshape(-1, 3, 3)
         mat = np.array(mats, np.float64).reshape(-1, 14)
-        self.terms = [np.ascontiguousarray(mat[:, k:k + 3]) for k in (0, 3, 6, 9)]
-        self.shininess = np.ascontiguousarray(mat[:, 12])
-        self.alpha = np.ascontiguousarray(mat[:, 13])
+        # Column views (the kernel takes any layout): no copies.
+        self.terms = [mat[:, k:k + 3] for k in (0, 3, 6, 9)]
+        self.shininess = mat[:, 12]
+        self.alpha = mat[:, 13]
         sp = np.array(spans, np.int64).reshape(-1, 2)
-        self.light_lo = np.ascontiguousarray(sp[:, 0])
-        self.light_hi = np.ascontiguousarray(sp[:, 1])
+        self.light_lo = sp[:, 0]
+        self.light_hi = sp[:, 1]
         self.lmodel = np.array(lms, np.float64).reshape(-1, LMODEL_COLUMNS)
         self.lights = np.concatenate(tables) if tables else np.zeros((0, LIGHT_COLUMNS))
         self.klass = np.array(klass, np.int64)
         self.projections = len(projections)
 
 
+_EYE4 = np.eye(4)
+_EYE3 = np.eye(3)
 _NO_MATERIAL = (0.0,) * 14
 _NO_LMODEL = (0.0,) * LMODEL_COLUMNS
 _LMODEL_ROWS: dict[int, tuple] = {}  # id(LightModel) -> (LightModel, row)
@@ -217,75 +219,68 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
                          tab.light_hi, tab.lights, tab.lmodel, equation._MIN_SHININESS, clip_v,
                          rgba)
     tris, prov, tri_row = assemble_triangles(tri_rows, 0, swaps)
-    # Segments: a clear is one on its own; consecutive triangle rows of one class
-    # form one.  They are drawn in row order, each before the clear after it.
-    klass = np.full(rows.shape[0], -1, np.int64)
-    klass[~is_clear] = tab.klass[rec_of]
-    brk = np.ones(rows.shape[0], bool)
-    brk[1:] = (klass[1:] != klass[:-1]) | is_clear[1:] | is_clear[:-1]
-    seg_of_row = np.cumsum(brk) - 1
-    nseg = int(seg_of_row[-1]) + 1
-    row_seg = seg_of_row[~is_clear]  # per triangle row, nondecreasing
-    tri_seg = row_seg[tri_row]  # per triangle, nondecreasing
-    heads = np.flatnonzero(brk).tolist()
-    head_rec = rows[brk, P_STATE].tolist()
-    head_clear = is_clear[brk].tolist()
     rasters = [records[i].raster for i in used_l]
-    # Per triangle, its raster (a dense number; records may share one).
+    # Per record, its raster's number (records may share one), and the rasters.
     rast_ids: dict[int, int] = {}
     rast_of_rec = np.array([rast_ids.setdefault(id(r), len(rast_ids)) for r in rasters],
                            np.int64)
     distinct = list({id(r): r for r in rasters}.values())
-    tri_rast = rast_of_rec[rec_of[tri_row]]
     if tab.projections != 1:
-        _draw_segments(ctx, records, rows, heads, head_rec, head_clear, clears, clear_fn,
-                       nseg, tri_seg, tris, prov, tri_rast, distinct, row_seg, row_v0,
-                       row_v1, clip_v, rgba)
+        _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, tab.klass, rec_of,
+                       tris, prov, tri_row, rast_of_rec, distinct, row_v0, row_v1, clip_v,
+                       rgba)
         return
     # One projection for every triangle row: one clip and one projection pass for
     # them all, then one set-up call per segment.
     st = records[used_l[0]]
-    rs0 = st.raster
     l, r, b, t = st.viewport
     gx, gy = _guard(st.viewport)
     out_v, out_attr, out_tris, out_src = clip_triangles(clip_v, rgba, tris, gx, gy,
                                                         st.user_planes)
     xf, yf, zw = project_snap(out_v, l, r, b, t, float(st.depth[0]), float(st.depth[1]),
-                              rs0.subpixel)
-    t_cut = np.searchsorted(tri_seg[out_src], np.arange(nseg + 1)).tolist()
-    out_rast = tri_rast[out_src]
+                              st.raster.subpixel)
+    segs, out_rast = flush_segments(rows, rec_of, tab.klass, rast_of_rec, tri_row, out_src)
     flat = None
     batch = ctx.raw_batch
-    for s, h in enumerate(heads):
-        if head_clear[s]:
+    for h, clear, ta, tb, mixed in segs.tolist():
+        if clear:
             clear_fn(ctx, *clears[int(rows[h, P_CLEAR])])
             continue
-        ta, tb = t_cut[s], t_cut[s + 1]
         if tb == ta:
             continue
-        rs = records[head_rec[s]].raster
+        rs = records[int(rows[h, P_STATE])].raster
         colour = out_attr if needs_colour(rs) else None
         seg_flat = None
         if colour is not None and rs.shademodel == FLAT:
             if flat is None:
                 flat = rgba[prov]  # per input triangle: its provoking vertex's colour
             seg_flat = flat
-        ids = out_rast[ta:tb]
-        if (ids != ids[0]).any():
+        if mixed:
+            ids = out_rast[ta:tb]
             present = np.unique(ids)
             states = [distinct[i] for i in present.tolist()]
             batch.add_triangles_states(xf, yf, zw, colour, out_tris[ta:tb], out_src[ta:tb],
                                        seg_flat, states, np.searchsorted(present, ids))
         else:
             batch.add_triangles(xf, yf, zw, colour, out_tris[ta:tb], out_src[ta:tb],
-                                seg_flat, distinct[int(ids[0])])
+                                seg_flat, distinct[int(out_rast[ta])])
 
 
-def _draw_segments(ctx, records, rows, heads, head_rec, head_clear, clears, clear_fn, nseg,
-                   tri_seg, tris, prov, tri_rast, distinct, row_seg, row_v0, row_v1, clip_v,
+def _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, rec_klass, rec_of, tris,
+                   prov, tri_row, rast_of_rec, distinct, row_v0, row_v1, clip_v,
                    rgba) -> None:
     """:func:`draw_rows`' segments through one geometry pass each (records of
     several viewports, depth ranges, snapping modes or user clip planes)."""
+    klass = np.full(rows.shape[0], -1, np.int64)
+    klass[~is_clear] = rec_klass[rec_of]
+    brk = np.ones(rows.shape[0], bool)
+    brk[1:] = (klass[1:] != klass[:-1]) | is_clear[1:] | is_clear[:-1]
+    seg_of_row = np.cumsum(brk) - 1
+    nseg = int(seg_of_row[-1]) + 1
+    row_seg = seg_of_row[~is_clear]  # per triangle row, nondecreasing
+    tri_seg = row_seg[tri_row]  # per triangle, nondecreasing
+    tri_rast = rast_of_rec[rec_of[tri_row]]
+    heads = np.flatnonzero(brk).tolist()
     segs = np.arange(nseg + 1)
     t_cut = np.searchsorted(tri_seg, segs).tolist()
     r_cut = np.searchsorted(row_seg, segs)
@@ -293,14 +288,14 @@ def _draw_segments(ctx, records, rows, heads, head_rec, head_clear, clears, clea
     v_last = row_v1[np.maximum(r_cut[1:] - 1, 0)].tolist()
     batch = ctx.raw_batch
     for s, h in enumerate(heads):
-        if head_clear[s]:
+        if is_clear[h]:
             clear_fn(ctx, *clears[int(rows[h, P_CLEAR])])
             continue
         ta, tb = t_cut[s], t_cut[s + 1]
         if tb == ta:
             continue
         v0, v1 = v_first[s], v_last[s]
-        st = records[head_rec[s]]
+        st = records[int(rows[h, P_STATE])]
         rs = st.raster
         colour = rgba[v0:v1] if needs_colour(rs) else None
         flat = rgba[prov[ta:tb]] if (colour is not None and rs.shademodel == FLAT) else None
