@@ -288,7 +288,7 @@ def light_transform_rows(pos, col, nrm, sent, row_v0, row_v1, row_rec, mvp, ligh
 
 
 @jit
-def flush_segments(rows, rec_of, klass, rast, tri_row, out_src):
+def flush_segments(rows, rec_of, klass, rast, colour, tri_row, out_src):
     """Cut a flush's rows into segments and its clipped triangles among them.
 
     A CLEAR row is a segment of its own; consecutive triangle rows whose records
@@ -301,8 +301,9 @@ def flush_segments(rows, rec_of, klass, rast, tri_row, out_src):
         Clears and triangle primitives, in order.
     rec_of : ndarray, shape (Pt,), int64
         Per triangle row (the non-clear rows, in order), its record's dense number.
-    klass, rast : ndarray, shape (R,), int64
-        Per record, its segment class and its raster's number.
+    klass, rast, colour : ndarray, shape (R,), int64
+        Per record, its segment class, its raster's number and 1 when it writes
+        (or tests) colour.
     tri_row : ndarray, shape (T,), int64
         Per assembled triangle, its triangle row.
     out_src : ndarray, shape (T2,), int64
@@ -310,14 +311,15 @@ def flush_segments(rows, rec_of, klass, rast, tri_row, out_src):
 
     Returns
     -------
-    segs : ndarray, shape (S, 5), int64
+    segs : ndarray, shape (S, 6), int64
         Per segment: its first row, 1 for a clear (else 0), its clipped triangles
-        ``t0 .. t1 - 1``, and 1 when they are of several rasters.
+        ``t0 .. t1 - 1``, 1 when they are of several rasters, 1 when one of its
+        records needs colour.
     out_rast : ndarray, shape (T2,), int64
         Per clipped triangle, its raster's number.
     """
     np_ = rows.shape[0]
-    segs = np.zeros((np_, 5), np.int64)
+    segs = np.zeros((np_, 6), np.int64)
     row_seg = np.empty(rec_of.shape[0], np.int64)
     s = -1
     prev = -2  # the previous row's class; -1 for a clear
@@ -334,6 +336,8 @@ def flush_segments(rows, rec_of, klass, rast, tri_row, out_src):
             s += 1
             segs[s, 0] = p
             prev = c
+        if colour[rec_of[k]] != 0:
+            segs[s, 5] = 1
         row_seg[k] = s
         k += 1
     nseg = s + 1

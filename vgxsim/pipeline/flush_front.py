@@ -99,7 +99,7 @@ class _Tables:
     def __init__(self, records, used: list[int]):
         states = [records[i] for i in used]
         self.mvp = np.array([st.mvp for st in states], np.float64).reshape(-1, 4, 4)
-        modes, mvs, nms, mats, lms, spans, klass, proj = [], [], [], [], [], [], [], []
+        modes, mvs, nms, mats, lms, spans, klass, proj, wants = [], [], [], [], [], [], [], [], []
         tables: list[np.ndarray] = []
         light_rows: dict[tuple, tuple[int, int]] = {}
         classes: dict[tuple, int] = {}
@@ -113,7 +113,11 @@ class _Tables:
             pkey = (st.viewport, st.depth, rs.subpixel, id(st.user_planes))
             p = projections.setdefault(pkey, len(projections))
             proj.append(p)
-            klass.append(classes.setdefault((p, rs.shademodel, colour), len(classes)))
+            # Records with and without colour share a segment: set-up then computes
+            # colour planes that the fragment stage of the latter never reads (no
+            # colour write, no alpha test: needs_colour), and one call is saved.
+            klass.append(classes.setdefault((p, rs.shademodel), len(classes)))
+            wants.append(colour)
             ls = st.lighting
             if ls is None or not colour:  # keeps its colour (light_mode 0)
                 modes.append(0)
@@ -152,6 +156,7 @@ class _Tables:
         self.lmodel = np.array(lms, np.float64).reshape(-1, LMODEL_COLUMNS)
         self.lights = np.concatenate(tables) if tables else np.zeros((0, LIGHT_COLUMNS))
         self.klass = np.array(klass, np.int64)
+        self.colour = np.array(wants, np.int64)
         self.projections = len(projections)
 
 
@@ -226,9 +231,9 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
                            np.int64)
     distinct = list({id(r): r for r in rasters}.values())
     if tab.projections != 1:
-        _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, tab.klass, rec_of,
-                       tris, prov, tri_row, rast_of_rec, distinct, row_v0, row_v1, clip_v,
-                       rgba)
+        _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, tab.klass, tab.colour,
+                       rec_of, tris, prov, tri_row, rast_of_rec, distinct, row_v0, row_v1,
+                       clip_v, rgba)
         return
     # One projection for every triangle row: one clip and one projection pass for
     # them all, then one set-up call per segment.
@@ -239,17 +244,18 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
                                                         st.user_planes)
     xf, yf, zw = project_snap(out_v, l, r, b, t, float(st.depth[0]), float(st.depth[1]),
                               st.raster.subpixel)
-    segs, out_rast = flush_segments(rows, rec_of, tab.klass, rast_of_rec, tri_row, out_src)
+    segs, out_rast = flush_segments(rows, rec_of, tab.klass, rast_of_rec, tab.colour, tri_row,
+                                    out_src)
     flat = None
     batch = ctx.raw_batch
-    for h, clear, ta, tb, mixed in segs.tolist():
+    for h, clear, ta, tb, mixed, wants in segs.tolist():
         if clear:
             clear_fn(ctx, *clears[int(rows[h, P_CLEAR])])
             continue
         if tb == ta:
             continue
         rs = records[int(rows[h, P_STATE])].raster
-        colour = out_attr if needs_colour(rs) else None
+        colour = out_attr if wants else None
         seg_flat = None
         if colour is not None and rs.shademodel == FLAT:
             if flat is None:
@@ -266,8 +272,8 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
                                 seg_flat, distinct[int(out_rast[ta])])
 
 
-def _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, rec_klass, rec_of, tris,
-                   prov, tri_row, rast_of_rec, distinct, row_v0, row_v1, clip_v,
+def _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, rec_klass, rec_colour,
+                   rec_of, tris, prov, tri_row, rast_of_rec, distinct, row_v0, row_v1, clip_v,
                    rgba) -> None:
     """:func:`draw_rows`' segments through one geometry pass each (records of
     several viewports, depth ranges, snapping modes or user clip planes)."""
@@ -280,6 +286,7 @@ def _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, rec_klass, re
     row_seg = seg_of_row[~is_clear]  # per triangle row, nondecreasing
     tri_seg = row_seg[tri_row]  # per triangle, nondecreasing
     tri_rast = rast_of_rec[rec_of[tri_row]]
+    tri_colour = rec_colour[rec_of[tri_row]]
     heads = np.flatnonzero(brk).tolist()
     segs = np.arange(nseg + 1)
     t_cut = np.searchsorted(tri_seg, segs).tolist()
@@ -297,7 +304,7 @@ def _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, rec_klass, re
         v0, v1 = v_first[s], v_last[s]
         st = records[int(rows[h, P_STATE])]
         rs = st.raster
-        colour = rgba[v0:v1] if needs_colour(rs) else None
+        colour = rgba[v0:v1] if tri_colour[ta:tb].any() else None
         flat = rgba[prov[ta:tb]] if (colour is not None and rs.shademodel == FLAT) else None
         ids = tri_rast[ta:tb]
         tri_states = None
