@@ -137,7 +137,7 @@ class _Tables:
             lkey = tuple(id(e) for e in ls.lights)
             span = light_rows.get(lkey)
             if span is None:
-                table = equation._light_table(ls.lights)
+                table = _light_table(ls.lights)
                 span = light_rows[lkey] = (top, top + table.shape[0])
                 tables.append(table)
                 top += table.shape[0]
@@ -165,6 +165,27 @@ _EYE3 = np.eye(3)
 _NO_MATERIAL = (0.0,) * 14
 _NO_LMODEL = (0.0,) * LMODEL_COLUMNS
 _LMODEL_ROWS: dict[int, tuple] = {}  # id(LightModel) -> (LightModel, row)
+
+
+_LIGHT_TABLES: dict[tuple, tuple] = {}  # value key -> (Light objects, table)
+
+
+def _light_table(lights: tuple) -> np.ndarray:
+    """The kernel's light rows of bound lights (equation._light_table), once per
+    value: a frame lmbinds its lights again (new eye-space arrays of the same
+    values), so the key is each Light definition's identity with the bytes of its
+    eye-space position and spot direction (the entry keeps the definitions, so
+    their ids stay theirs; definitions are replaced, never mutated)."""
+    key = tuple((id(light), None if p is None else np.asarray(p, np.float64).tobytes(),
+                 None if d is None else np.asarray(d, np.float64).tobytes())
+                for light, p, d in lights)
+    hit = _LIGHT_TABLES.get(key)
+    if hit is None or any(a is not b for a, (b, _p, _d) in zip(hit[0], lights, strict=True)):
+        if len(_LIGHT_TABLES) > 256:
+            _LIGHT_TABLES.clear()
+        hit = _LIGHT_TABLES[key] = (tuple(e[0] for e in lights),
+                                    equation._light_table(lights))
+    return hit[1]
 
 
 def _lmodel_row(lmodel) -> np.ndarray:
