@@ -317,6 +317,10 @@ def flush_segments(rows, rec_of, klass, rast, colour, tri_row, out_src):
         records needs colour.
     out_rast : ndarray, shape (T2,), int64
         Per clipped triangle, its raster's number.
+    present : ndarray, shape (S, NR), bool
+        Per segment, which raster numbers its triangles have (NR = ``rast.max() + 1``).
+    local : ndarray, shape (T2,), int64
+        Per clipped triangle, its raster's rank among its segment's present ones.
     """
     np_ = rows.shape[0]
     segs = np.zeros((np_, 6), np.int64)
@@ -355,8 +359,23 @@ def flush_segments(rows, rec_of, klass, rast, colour, tri_row, out_src):
         elif out_rast[segs[q, 2]] != v:
             segs[q, 4] = 1
         segs[q, 3] = t + 1
+    nr = 0
+    for i in range(rast.shape[0]):
+        nr = max(nr, rast[i] + 1)
+    present = np.zeros((nseg, nr), np.bool_)
+    local = np.zeros(out_src.shape[0], np.int64)
+    rank = np.empty(nr, np.int64)
     for q in range(nseg):
         if segs[q, 2] < 0:
             segs[q, 2] = 0
             segs[q, 3] = 0
-    return segs[:nseg], out_rast
+            continue
+        for t in range(segs[q, 2], segs[q, 3]):
+            present[q, out_rast[t]] = True
+        n = 0
+        for k in range(nr):
+            rank[k] = n
+            n += present[q, k]
+        for t in range(segs[q, 2], segs[q, 3]):
+            local[t] = rank[out_rast[t]]
+    return segs[:nseg], out_rast, present, local

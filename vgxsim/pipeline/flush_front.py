@@ -265,11 +265,11 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
                                                         st.user_planes)
     xf, yf, zw = project_snap(out_v, l, r, b, t, float(st.depth[0]), float(st.depth[1]),
                               st.raster.subpixel)
-    segs, out_rast = flush_segments(rows, rec_of, tab.klass, rast_of_rec, tab.colour, tri_row,
-                                    out_src)
+    segs, out_rast, present, local = flush_segments(rows, rec_of, tab.klass, rast_of_rec,
+                                                    tab.colour, tri_row, out_src)
     flat = None
     batch = ctx.raw_batch
-    for h, clear, ta, tb, mixed, wants in segs.tolist():
+    for q, (h, clear, ta, tb, mixed, wants) in enumerate(segs.tolist()):
         if clear:
             clear_fn(ctx, *clears[int(rows[h, P_CLEAR])])
             continue
@@ -283,11 +283,9 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
                 flat = rgba[prov]  # per input triangle: its provoking vertex's colour
             seg_flat = flat
         if mixed:
-            ids = out_rast[ta:tb]
-            present = np.unique(ids)
-            states = [distinct[i] for i in present.tolist()]
+            states = [distinct[i] for i in np.flatnonzero(present[q]).tolist()]
             batch.add_triangles_states(xf, yf, zw, colour, out_tris[ta:tb], out_src[ta:tb],
-                                       seg_flat, states, np.searchsorted(present, ids))
+                                       seg_flat, states, local[ta:tb])
         else:
             batch.add_triangles(xf, yf, zw, colour, out_tris[ta:tb], out_src[ta:tb],
                                 seg_flat, distinct[int(out_rast[ta])])
