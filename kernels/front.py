@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from vgxsim.stream.opcodes import CLEAR_KIND, P_KIND
+from vgxsim.stream.opcodes import CLEAR_KIND, P_KIND, P_STATE, P_V0, P_V1
 
 from .clip import MAX_POLY, NONFINITE, clip_triangles, outcodes, project_snap
 from .lighting import _shade_vertex
@@ -379,3 +379,76 @@ def flush_segments(rows, rec_of, klass, rast, colour, tri_row, out_src):
         for t in range(segs[q, 2], segs[q, 3]):
             local[t] = rank[out_rast[t]]
     return segs[:nseg], out_rast, present, local
+
+
+@jit
+def flush_rows(prims, nrec):
+    """The rows a flush pass draws, and its triangle rows' vertices and records.
+
+    Parameters
+    ----------
+    prims : ndarray, shape (P, PRIM_COLUMNS), int64
+        Decoded primitive rows: clears and triangle primitives.
+    nrec : int
+        Records in the window's table.
+
+    Returns
+    -------
+    rows : ndarray, shape (P2, PRIM_COLUMNS), int64
+        The clears and the primitives with vertices, in order.
+    tri_rows : ndarray, shape (Pt, PRIM_COLUMNS), int64
+        The primitives of ``rows``, vertex columns counted from ``vlo``.
+    rec_of : ndarray, shape (Pt,), int64
+        Each one's record, numbered densely among ``used``.
+    used : ndarray, shape (R,), int64
+        The records those rows use, in index order.
+    row_v0, row_v1 : ndarray, shape (Pt,), int64
+        The vertex columns of ``tri_rows``.
+    vlo, vhi : int
+        Their vertices are ``vlo .. vhi - 1`` (the decoder writes them in order).
+    """
+    npr = prims.shape[0]
+    n = 0
+    nt = 0
+    for p in range(npr):
+        if prims[p, P_KIND] == CLEAR_KIND:
+            n += 1
+        elif prims[p, P_V1] > prims[p, P_V0]:
+            n += 1
+            nt += 1
+    rows = np.empty((n, prims.shape[1]), np.int64)
+    tri_rows = np.empty((nt, prims.shape[1]), np.int64)
+    seen = np.zeros(nrec, np.bool_)
+    k = 0
+    j = 0
+    for p in range(npr):
+        clear = prims[p, P_KIND] == CLEAR_KIND
+        if not clear and prims[p, P_V1] <= prims[p, P_V0]:
+            continue
+        rows[k] = prims[p]
+        k += 1
+        if not clear:
+            tri_rows[j] = prims[p]
+            seen[prims[p, P_STATE]] = True
+            j += 1
+    vlo = tri_rows[0, P_V0] if nt > 0 else 0
+    vhi = tri_rows[nt - 1, P_V1] if nt > 0 else 0
+    dense = np.empty(nrec, np.int64)
+    nu = 0
+    for r in range(nrec):
+        dense[r] = nu
+        nu += seen[r]
+    used = np.empty(nu, np.int64)
+    for r in range(nrec):
+        if seen[r]:
+            used[dense[r]] = r
+    rec_of = np.empty(nt, np.int64)
+    row_v0 = np.empty(nt, np.int64)
+    row_v1 = np.empty(nt, np.int64)
+    for i in range(nt):
+        tri_rows[i, P_V0] -= vlo
+        tri_rows[i, P_V1] -= vlo
+        rec_of[i] = dense[tri_rows[i, P_STATE]]
+        row_v0[i] = tri_rows[i, P_V0]
+        row_v1[i] = tri_rows[i, P_V1]
+    return rows, tri_rows, rec_of, used, row_v0, row_v1, vlo, vhi

@@ -35,7 +35,7 @@ import numpy as np
 from vgxsim.geometry.pipeline import Viewing, _guard, draw_triangles
 from vgxsim.kernels.clip import clip_triangles, project_snap
 from vgxsim.kernels.decode import assemble_triangles
-from vgxsim.kernels.front import flush_segments, light_transform_rows
+from vgxsim.kernels.front import flush_rows, flush_segments, light_transform_rows
 from vgxsim.kernels.lighting import LIGHT_COLUMNS, LMODEL_COLUMNS
 from vgxsim.lighting import equation
 from vgxsim.state.raster import FLAT, needs_colour
@@ -45,8 +45,6 @@ from vgxsim.stream.opcodes import (
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
-    P_V0,
-    P_V1,
     PMV,
     POLYGON,
     QSTRIP,
@@ -214,31 +212,16 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
     clear_fn : callable
         ``clear_fn(ctx, *clears[i])`` does a clear (vgxsim.pipeline.decode._clear).
     """
-    rows = rows[(rows[:, P_KIND] == CLEAR_KIND) | (rows[:, P_V1] > rows[:, P_V0])]
-    is_clear = rows[:, P_KIND] == CLEAR_KIND
-    tri_rows = rows[~is_clear]
+    rows, tri_rows, rec_of, used, row_v0, row_v1, vlo, vhi = flush_rows(rows, len(records))
     if tri_rows.shape[0] == 0:
         for r in rows.tolist():
             clear_fn(ctx, *clears[r[P_CLEAR]])
         return
-    # The rows' vertices are back to back (the decoder writes them in order).
-    vlo, vhi = int(tri_rows[0, P_V0]), int(tri_rows[-1, P_V1])
-    tri_rows = tri_rows - np.array([0, vlo, vlo, 0, 0, 0, 0], np.int64)
-    # The records used, in index order, and each row's dense number among them (a
-    # look-up table: records are few, rows many).
-    si = tri_rows[:, P_STATE]
-    seen = np.zeros(len(records), bool)
-    seen[si] = True
-    used = np.flatnonzero(seen)
-    dense = np.cumsum(seen) - 1
-    rec_of = dense[si]
     used_l = used.tolist()
     tab = _Tables(records, used_l)
     nv = vhi - vlo
     clip_v = np.empty((nv, 4))
     rgba = np.empty((nv, 4))
-    row_v0 = np.ascontiguousarray(tri_rows[:, P_V0])
-    row_v1 = np.ascontiguousarray(tri_rows[:, P_V1])
     light_transform_rows(pos[vlo:vhi], col[vlo:vhi], nrm[vlo:vhi], sent[vlo:vhi], row_v0,
                          row_v1, rec_of, tab.mvp, tab.light_mode, tab.modelview,
                          tab.normal_matrix, *tab.terms, tab.shininess, tab.alpha, tab.light_lo,
@@ -252,9 +235,9 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
                            np.int64)
     distinct = list({id(r): r for r in rasters}.values())
     if tab.projections != 1:
-        _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, tab.klass, tab.colour,
-                       rec_of, tris, prov, tri_row, rast_of_rec, distinct, row_v0, row_v1,
-                       clip_v, rgba)
+        _draw_segments(ctx, records, rows, rows[:, P_KIND] == CLEAR_KIND, clears, clear_fn,
+                       tab.klass, tab.colour, rec_of, tris, prov, tri_row, rast_of_rec,
+                       distinct, row_v0, row_v1, clip_v, rgba)
         return
     # One projection for every triangle row: one clip and one projection pass for
     # them all, then one set-up call per segment.
