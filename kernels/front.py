@@ -29,7 +29,18 @@ import math
 
 import numpy as np
 
-from vgxsim.stream.opcodes import CLEAR_KIND, P_KIND, P_STATE, P_V0, P_V1
+from vgxsim.stream.opcodes import (
+    CLEAR_KIND,
+    P_KIND,
+    P_LMCOLOR_SET,
+    P_STATE,
+    P_V0,
+    P_V1,
+    PMV,
+    POLYGON,
+    QSTRIP,
+    TMESH,
+)
 
 from .clip import MAX_POLY, NONFINITE, clip_triangles, outcodes, project_snap
 from .lighting import _shade_vertex
@@ -382,15 +393,49 @@ def flush_segments(rows, rec_of, klass, rast, colour, tri_row, out_src):
 
 
 @jit
-def flush_rows(prims, nrec):
+def fast_rows(prims, code):
+    """Per primitive row, whether the flush pass draws it: a clear, or a triangle
+    primitive (polygon, pmv, tmesh, qstrip) of a record coded 1, or coded 2 without
+    a set lmcolor colour (vgxsim/pipeline/flush_front.py ``Tables.code``).
+
+    Parameters
+    ----------
+    prims : ndarray, shape (P, PRIM_COLUMNS), int64
+    code : ndarray, shape (R,), int64
+
+    Returns
+    -------
+    fast : ndarray, shape (P,), bool
+    n : int
+        How many are.
+    """
+    npr = prims.shape[0]
+    fast = np.zeros(npr, np.bool_)
+    n = 0
+    for p in range(npr):
+        kind = prims[p, P_KIND]
+        if kind == CLEAR_KIND:
+            ok = True
+        elif kind == POLYGON or kind == PMV or kind == TMESH or kind == QSTRIP:
+            c = code[prims[p, P_STATE]]
+            ok = c == 1 or (c == 2 and prims[p, P_LMCOLOR_SET] == 0)
+        else:
+            ok = False
+        fast[p] = ok
+        n += ok
+    return fast, n
+
+
+@jit
+def flush_rows(prims, rec_proj):
     """The rows a flush pass draws, and its triangle rows' vertices and records.
 
     Parameters
     ----------
     prims : ndarray, shape (P, PRIM_COLUMNS), int64
         Decoded primitive rows: clears and triangle primitives.
-    nrec : int
-        Records in the window's table.
+    rec_proj : ndarray, shape (R,), int64
+        Per record of the window's table, its projection's number.
 
     Returns
     -------
@@ -399,15 +444,16 @@ def flush_rows(prims, nrec):
     tri_rows : ndarray, shape (Pt, PRIM_COLUMNS), int64
         The primitives of ``rows``, vertex columns counted from ``vlo``.
     rec_of : ndarray, shape (Pt,), int64
-        Each one's record, numbered densely among ``used``.
-    used : ndarray, shape (R,), int64
-        The records those rows use, in index order.
+        Each one's record.
     row_v0, row_v1 : ndarray, shape (Pt,), int64
         The vertex columns of ``tri_rows``.
     vlo, vhi : int
         Their vertices are ``vlo .. vhi - 1`` (the decoder writes them in order).
+    nproj : int
+        How many projections their records have.
     """
     npr = prims.shape[0]
+    nrec = rec_proj.shape[0]
     n = 0
     nt = 0
     for p in range(npr):
@@ -418,7 +464,7 @@ def flush_rows(prims, nrec):
             nt += 1
     rows = np.empty((n, prims.shape[1]), np.int64)
     tri_rows = np.empty((nt, prims.shape[1]), np.int64)
-    seen = np.zeros(nrec, np.bool_)
+    seen = np.zeros(nrec + 1, np.bool_)
     k = 0
     j = 0
     for p in range(npr):
@@ -429,26 +475,20 @@ def flush_rows(prims, nrec):
         k += 1
         if not clear:
             tri_rows[j] = prims[p]
-            seen[prims[p, P_STATE]] = True
+            seen[rec_proj[prims[p, P_STATE]]] = True
             j += 1
     vlo = tri_rows[0, P_V0] if nt > 0 else 0
     vhi = tri_rows[nt - 1, P_V1] if nt > 0 else 0
-    dense = np.empty(nrec, np.int64)
-    nu = 0
-    for r in range(nrec):
-        dense[r] = nu
-        nu += seen[r]
-    used = np.empty(nu, np.int64)
-    for r in range(nrec):
-        if seen[r]:
-            used[dense[r]] = r
+    nproj = 0
+    for r in range(nrec + 1):
+        nproj += seen[r]
     rec_of = np.empty(nt, np.int64)
     row_v0 = np.empty(nt, np.int64)
     row_v1 = np.empty(nt, np.int64)
     for i in range(nt):
         tri_rows[i, P_V0] -= vlo
         tri_rows[i, P_V1] -= vlo
-        rec_of[i] = dense[tri_rows[i, P_STATE]]
+        rec_of[i] = tri_rows[i, P_STATE]
         row_v0[i] = tri_rows[i, P_V0]
         row_v1[i] = tri_rows[i, P_V1]
-    return rows, tri_rows, rec_of, used, row_v0, row_v1, vlo, vhi
+    return rows, tri_rows, rec_of, row_v0, row_v1, vlo, vhi, nproj

@@ -18,6 +18,7 @@ import numpy as np
 from vgxsim.geometry.pipeline import _plain_batch
 from vgxsim.geometry.transform import apply
 from vgxsim.kernels.decode import assemble_triangles, decode_stream
+from vgxsim.kernels.front import fast_rows
 from vgxsim.kernels.texture import decode_texcoords
 from vgxsim.state.raster import needs_colour
 from vgxsim.stream.opcodes import (
@@ -106,20 +107,21 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears
         _select_prims(ctx, records, pos, prims, swaps, clears)
         return
     if draw.FLUSH_FRONT and tc is None and _plain_batch(ctx.raw_batch):
-        fast = flush_front.fast_rows(records, prims)
-        if fast.all():
+        tab = flush_front.Tables(records)
+        fast, nfast = fast_rows(prims, tab.code)
+        if nfast == npr:
             commit_triangles(ctx)  # queued before this flush's rows
-            flush_front.draw_rows(ctx, records, pos, col, nrm, sent, prims, swaps, clears,
-                                  _clear)
+            flush_front.draw_rows(ctx, records, tab, pos, col, nrm, sent, prims, swaps,
+                                  clears, _clear)
             return
-        if fast.any():
+        if nfast:
             # Runs of rows the flush pass takes, between runs of rows that need the
             # group-by-group path, in order.
             cuts = (np.flatnonzero(fast[1:] != fast[:-1]) + 1).tolist()
             for a, b in zip([0, *cuts], [*cuts, npr], strict=True):
                 if fast[a]:
                     commit_triangles(ctx)
-                    flush_front.draw_rows(ctx, records, pos, col, nrm, sent, prims[a:b],
+                    flush_front.draw_rows(ctx, records, tab, pos, col, nrm, sent, prims[a:b],
                                           swaps, clears, _clear)
                 else:
                     _draw_groups(ctx, records, pos, col, nrm, sent, prims[a:b], swaps, tc,

@@ -43,18 +43,8 @@ from vgxsim.stream.opcodes import (
     CLEAR_KIND,
     P_CLEAR,
     P_KIND,
-    P_LMCOLOR_SET,
     P_STATE,
-    PMV,
-    POLYGON,
-    QSTRIP,
-    TMESH,
 )
-
-_TRIANGLES = np.zeros(16, bool)
-_TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
-
-_MATERIAL_TERMS = ("emission", "ambient", "diffuse", "specular")
 
 
 def _plain_record(state) -> bool:
@@ -71,53 +61,59 @@ def _overridden(state) -> bool:
     return state.lmcolor_mode not in (0, 6)
 
 
-def fast_rows(records, prims: np.ndarray) -> np.ndarray:
-    """Per primitive row, whether it takes the flush pass: a clear, or a triangle
-    primitive of a plain record without an lmcolor override.
+class Tables:
+    """Per record of a flush's table, in one pass over them: whether its rows take
+    the flush pass (``code``), what :func:`light_transform_rows` reads (kernel
+    argument order), its segment class, projection and raster numbers.
 
-    Returns
-    -------
-    ndarray, shape (P,), bool
+    Attributes
+    ----------
+    code : ndarray, shape (R,), int64
+        1 plain (:func:`_plain_record`), 2 plain but overridden by a set lmcolor
+        colour, 0 neither (kernels/front.py fast_rows).
+    klass, proj, rast, colour : ndarray, shape (R,), int64
+        Segment class (projection and shading model), projection, raster number
+        (records may share a raster; ``rasters[n]`` is raster ``n``), and 1 when
+        the record writes or tests colour (needs_colour).
     """
-    # Per record (and one entry more, for a clear before any record: index -1):
-    # 1 plain, 2 plain but overridden by a set lmcolor colour, 0 neither.
-    code = np.array([(1 + _overridden(r)) if _plain_record(r) else 0 for r in records]
-                    + [0], np.int64)
-    c = code[prims[:, P_STATE]]
-    kinds = prims[:, P_KIND]
-    ok = _TRIANGLES[kinds] & ((c == 1) | ((c == 2) & (prims[:, P_LMCOLOR_SET] == 0)))
-    return ok | (kinds == CLEAR_KIND)
 
-
-class _Tables:
-    """Per record used by a flush (dense index ``0 .. len(used) - 1``), what
-    :func:`light_transform_rows` reads, in kernel argument order, and its segment
-    class (:func:`draw_rows`)."""
-
-    def __init__(self, records, used: list[int]):
-        states = [records[i] for i in used]
-        self.mvp = np.array([st.mvp for st in states], np.float64).reshape(-1, 4, 4)
-        modes, mvs, nms, mats, lms, spans, klass, proj, wants = [], [], [], [], [], [], [], [], []
+    def __init__(self, records):
+        modes, mvps, mvs, nms, mats, lms, spans = [], [], [], [], [], [], []
+        code, klass, proj, wants, rast = [], [], [], [], []
         tables: list[np.ndarray] = []
         light_rows: dict[tuple, tuple[int, int]] = {}
         classes: dict[tuple, int] = {}
         projections: dict[tuple, int] = {}
+        rast_ids: dict[int, int] = {}
+        self.rasters: list = []
         top = 0
-        for st in states:
+        for st in records:
             rs = st.raster
+            n = rast_ids.setdefault(id(rs), len(rast_ids))
+            if n == len(self.rasters):
+                self.rasters.append(rs)
+            rast.append(n)
+            mvps.append(st.mvp)
             colour = needs_colour(rs)
-            # user_planes by identity: the common NO_PLANES is one object, and two
-            # equal arrays in different objects only cost a segment break.
-            pkey = (st.viewport, st.depth, rs.subpixel, id(st.user_planes))
-            p = projections.setdefault(pkey, len(projections))
-            proj.append(p)
-            # Records with and without colour share a segment: set-up then computes
-            # colour planes that the fragment stage of the latter never reads (no
-            # colour write, no alpha test: needs_colour), and one call is saved.
-            klass.append(classes.setdefault((p, rs.shademodel), len(classes)))
             wants.append(colour)
             ls = st.lighting
-            if ls is None or not colour:  # keeps its colour (light_mode 0)
+            plain = _plain_record(st)
+            code.append((1 + _overridden(st)) if plain else 0)
+            if plain:
+                # user_planes by identity: the common NO_PLANES is one object, and
+                # two equal arrays in different objects only cost a segment break.
+                pkey = (st.viewport, st.depth, rs.subpixel, id(st.user_planes))
+                p = projections.setdefault(pkey, len(projections))
+                # Records with and without colour share a segment: set-up then
+                # computes colour planes that the fragment stage of the latter
+                # never reads (no colour write, no alpha test: needs_colour), and
+                # one call is saved.
+                k = classes.setdefault((p, rs.shademodel), len(classes))
+            else:
+                p = k = -1
+            proj.append(p)
+            klass.append(k)
+            if not plain or ls is None or not colour:  # keeps its colour (light_mode 0)
                 modes.append(0)
                 mvs.append(_EYE4)
                 nms.append(_EYE3)
@@ -140,6 +136,12 @@ class _Tables:
                 tables.append(table)
                 top += table.shape[0]
             spans.append(span)
+        self.code = np.array(code, np.int64)
+        self.klass = np.array(klass, np.int64)
+        self.proj = np.array(proj, np.int64)
+        self.rast = np.array(rast, np.int64)
+        self.colour = np.array(wants, np.int64)
+        self.mvp = np.array(mvps, np.float64).reshape(-1, 4, 4)
         self.light_mode = np.array(modes, np.int64)
         self.modelview = np.array(mvs, np.float64).reshape(-1, 4, 4)
         self.normal_matrix = np.array(nms, np.float64).reshape(-1, 3, 3)
@@ -153,9 +155,6 @@ class _Tables:
         self.light_hi = sp[:, 1]
         self.lmodel = np.array(lms, np.float64).reshape(-1, LMODEL_COLUMNS)
         self.lights = np.concatenate(tables) if tables else np.zeros((0, LIGHT_COLUMNS))
-        self.klass = np.array(klass, np.int64)
-        self.colour = np.array(wants, np.int64)
-        self.projections = len(projections)
 
 
 _EYE4 = np.eye(4)
@@ -197,12 +196,14 @@ def _lmodel_row(lmodel) -> np.ndarray:
     return hit[1]
 
 
-def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears,
-              clear_fn) -> None:
-    """Draw primitive rows that :func:`fast_rows` accepts, in order.
+def draw_rows(ctx, records, tab: Tables, pos, col, nrm, sent, rows: np.ndarray, swaps,
+              clears, clear_fn) -> None:
+    """Draw primitive rows that kernels/front.py ``fast_rows`` accepts, in order.
 
     Parameters
     ----------
+    tab : Tables
+        Of ``records``.
     rows : ndarray, shape (P, PRIM_COLUMNS), int64
         Decoded primitive rows (clears and triangle primitives).
     pos, col, nrm, sent, swaps
@@ -212,13 +213,11 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
     clear_fn : callable
         ``clear_fn(ctx, *clears[i])`` does a clear (vgxsim.pipeline.decode._clear).
     """
-    rows, tri_rows, rec_of, used, row_v0, row_v1, vlo, vhi = flush_rows(rows, len(records))
+    rows, tri_rows, rec_of, row_v0, row_v1, vlo, vhi, nproj = flush_rows(rows, tab.proj)
     if tri_rows.shape[0] == 0:
         for r in rows.tolist():
             clear_fn(ctx, *clears[r[P_CLEAR]])
         return
-    used_l = used.tolist()
-    tab = _Tables(records, used_l)
     nv = vhi - vlo
     clip_v = np.empty((nv, 4))
     rgba = np.empty((nv, 4))
@@ -228,27 +227,22 @@ def draw_rows(ctx, records, pos, col, nrm, sent, rows: np.ndarray, swaps, clears
                          tab.light_hi, tab.lights, tab.lmodel, equation._MIN_SHININESS, clip_v,
                          rgba)
     tris, prov, tri_row = assemble_triangles(tri_rows, 0, swaps)
-    rasters = [records[i].raster for i in used_l]
-    # Per record, its raster's number (records may share one), and the rasters.
-    rast_ids: dict[int, int] = {}
-    rast_of_rec = np.array([rast_ids.setdefault(id(r), len(rast_ids)) for r in rasters],
-                           np.int64)
-    distinct = list({id(r): r for r in rasters}.values())
-    if tab.projections != 1:
+    distinct = tab.rasters
+    if nproj != 1:
         _draw_segments(ctx, records, rows, rows[:, P_KIND] == CLEAR_KIND, clears, clear_fn,
-                       tab.klass, tab.colour, rec_of, tris, prov, tri_row, rast_of_rec,
+                       tab.klass, tab.colour, rec_of, tris, prov, tri_row, tab.rast,
                        distinct, row_v0, row_v1, clip_v, rgba)
         return
     # One projection for every triangle row: one clip and one projection pass for
     # them all, then one set-up call per segment.
-    st = records[used_l[0]]
+    st = records[int(rec_of[0])]
     l, r, b, t = st.viewport
     gx, gy = _guard(st.viewport)
     out_v, out_attr, out_tris, out_src = clip_triangles(clip_v, rgba, tris, gx, gy,
                                                         st.user_planes)
     xf, yf, zw = project_snap(out_v, l, r, b, t, float(st.depth[0]), float(st.depth[1]),
                               st.raster.subpixel)
-    segs, out_rast, present, local = flush_segments(rows, rec_of, tab.klass, rast_of_rec,
+    segs, out_rast, present, local = flush_segments(rows, rec_of, tab.klass, tab.rast,
                                                     tab.colour, tri_row, out_src)
     flat = None
     batch = ctx.raw_batch
