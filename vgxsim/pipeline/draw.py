@@ -37,8 +37,8 @@ BATCH_LIGHTING = True
 #: Fast-path switch: at a flush, the triangle primitives whose records need only
 #: transform, one-sided lighting, clipping, projection and set-up go through a
 #: constant number of passes (vgxsim/pipeline/flush_front.py: one lighting and
-#: transform pass over all their vertices, one clip + set-up call per run of rows
-#: between clears that project alike) instead of group by group.  False: the
+#: transform pass over all their vertices, one clip and projection pass, one set-up
+#: call per run of rows between clears) instead of group by group.  False: the
 #: group-by-group path for every row (tests/pipeline/test_flush_front.py compares).
 #: Off by default for now: on, it bypasses the paths that BATCH_LIGHTING and
 #: FUSED_FRONT select for the 1991 frame, which their own tests count on;

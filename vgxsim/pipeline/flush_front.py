@@ -1,31 +1,37 @@
 """The flush-time front end in a constant number of passes (``draw.FLUSH_FRONT``).
 
-The group-by-group path (:func:`vgxsim.pipeline.decode._draw_prims`) walks the
+The group-by-group path (:func:`vgxsim.pipeline.decode._draw_groups`) walks the
 decoded primitives group by group: per group it lights (or collects the group for
 :func:`.draw.shade_groups`), defers, and per run of groups that project alike runs
 the geometry passes.  The 1991 frame has about fifteen groups and five geometry
 passes per flush, each a few hundred triangles, so the front end's time is the
 Python around the kernels, not the kernels.
 
-Here, for the primitives whose records need nothing but transform, lighting,
-clipping, projection and set-up (below, :func:`_plain_record`), the whole flush is:
+Here, for the rows whose records need nothing but transform, one-sided lighting,
+clipping, projection and set-up (:func:`_plain_record`), a flush is:
 
-1. one :func:`~vgxsim.kernels.decode.assemble_triangles` over all their rows;
-2. one :func:`~vgxsim.kernels.front.light_transform_rows` pass: every vertex lit in
-   its record's lighting and taken to clip space by its record's transform, written
-   into one array each (no per-group arrays, no concatenation);
-3. per *segment* -- consecutive rows between clears whose records share viewport,
-   depth range, user clip planes, subpixel mode, shading model and whether colour is
-   written (what one clip + project + set-up call must share) -- one
-   :func:`vgxsim.geometry.pipeline.draw_triangles` on the clip coordinates (the
-   1991 frame: five segments per flush).
+1. one pass over the window's records (:class:`Tables`) and three small kernels
+   over the rows (kernels/front.py ``fast_rows``, ``flush_rows``,
+   ``flush_segments``) in place of per-group Python;
+2. one :func:`~vgxsim.kernels.decode.assemble_triangles` over all the rows;
+3. one :func:`~vgxsim.kernels.front.light_transform_rows` pass: every vertex lit in
+   its record's lighting and taken to clip space by its record's transform, into
+   one array each (no per-group arrays, no concatenation);
+4. when the records share one projection (viewport, depth range, subpixel mode,
+   user clip planes), one clip and one projection pass for all triangles; else one
+   geometry pass per segment (:func:`_draw_segments`);
+5. one set-up call per *segment*: consecutive rows between clears whose records
+   share projection and shading model.  Records with and without colour share a
+   segment (the fragment stage reads colour planes only where
+   :func:`~vgxsim.state.raster.needs_colour`): the 1991 frame's flush is three
+   set-up calls and three clears.
 
 Every value is computed vertex by vertex or triangle by triangle in the arithmetic
-of the group-by-group passes (kernels/front.py), so the planes are the same
+of the group-by-group passes, so the planes are the same
 (tests/pipeline/test_flush_front.py).  Rows that need more (concave polygons,
 lines and points, textures and texgen, depth cueing, fog, two-sided lighting, an
 lmcolor override, the numpy lighting form) go through the group-by-group path in
-order, between the segments.
+order, between the runs of rows this module draws.
 """
 
 from __future__ import annotations
