@@ -130,11 +130,9 @@ class Tables:
             modes.append(2 if st.lmcolor_mode != 0 else 1)
             mvs.append(ls.modelview)
             nms.append(ls.normal_matrix)
-            m = ls.material
-            mats.append((*m.emission, *m.ambient, *m.diffuse, *m.specular, m.shininess,
-                         m.alpha))
+            mats.append(_material_row(ls.material))
             lms.append(_lmodel_row(ls.lmodel))
-            lkey = tuple(id(e) for e in ls.lights)
+            lkey = tuple(map(id, ls.lights))
             span = light_rows.get(lkey)
             if span is None:
                 table = _light_table(ls.lights)
@@ -188,6 +186,21 @@ def _light_table(lights: tuple) -> np.ndarray:
             _LIGHT_TABLES.clear()
         hit = _LIGHT_TABLES[key] = (tuple(e[0] for e in lights),
                                     equation._light_table(lights))
+    return hit[1]
+
+
+_MATERIAL_ROWS: dict[int, tuple] = {}  # id(Material) -> (Material, row)
+
+
+def _material_row(m) -> tuple:
+    """A material's kernel terms (emission, ambient, diffuse, specular, shininess,
+    alpha: 14 floats), once per material object (as :func:`_lmodel_row`)."""
+    hit = _MATERIAL_ROWS.get(id(m))
+    if hit is None or hit[0] is not m:
+        if len(_MATERIAL_ROWS) > 256:
+            _MATERIAL_ROWS.clear()
+        hit = _MATERIAL_ROWS[id(m)] = (m, (*m.emission, *m.ambient, *m.diffuse,
+                                           *m.specular, m.shininess, m.alpha))
     return hit[1]
 
 
