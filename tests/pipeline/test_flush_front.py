@@ -189,3 +189,61 @@ def test_flush_front_switch_gives_identical_planes_across_projections(monkeypatc
             assert np.array_equal(got[k], want[k]), (seed, k)
         drawn += bool(want["rgba"][..., :3].any())
     assert calls_seen[0] > len(SEEDS) and drawn > len(SEEDS) // 2
+
+
+def _row(kind, v0, v1, rec, lms=0):
+    return [kind, v0, v1, rec, lms, 0, 0]
+
+
+def test_fast_rows_takes_clears_and_the_triangles_of_plain_records():
+    from vgxsim.kernels.front import fast_rows
+    from vgxsim.stream.opcodes import CLEAR_KIND, LINE, POLYGON, QSTRIP, TMESH
+
+    prims = np.array([_row(CLEAR_KIND, 0, 0, -1), _row(POLYGON, 0, 4, 0),
+                      _row(QSTRIP, 4, 8, 1), _row(LINE, 8, 10, 0),
+                      _row(TMESH, 10, 14, 2), _row(TMESH, 14, 18, 2, lms=1),
+                      _row(POLYGON, 18, 21, 3)], np.int64)
+    code = np.array([1, 1, 2, 0], np.int64)  # plain, plain, overridden when set, not plain
+    fast, n = fast_rows(prims, code)
+    assert fast.tolist() == [True, True, True, False, True, False, False] and n == 4
+
+
+def test_flush_rows_keeps_rows_with_vertices_and_counts_from_the_first():
+    from vgxsim.kernels.front import flush_rows
+    from vgxsim.stream.opcodes import CLEAR_KIND, POLYGON, QSTRIP
+
+    prims = np.array([_row(CLEAR_KIND, 0, 0, -1), _row(POLYGON, 10, 14, 0),
+                      _row(POLYGON, 14, 14, 1), _row(QSTRIP, 14, 18, 2)], np.int64)
+    rows, tri_rows, rec_of, v0, v1, vlo, vhi, nproj = flush_rows(
+        prims, np.array([0, 0, 1], np.int64))
+    assert rows[:, 0].tolist() == [CLEAR_KIND, POLYGON, QSTRIP]
+    assert v0.tolist() == [0, 4] and v1.tolist() == [4, 8] and (vlo, vhi) == (10, 18)
+    assert rec_of.tolist() == [0, 2] and nproj == 2
+    assert tri_rows[:, 1].tolist() == [0, 4]
+
+
+def test_flush_segments_cuts_at_clears_and_classes():
+    """Rows: clear, two of class 0 (rasters 0 and 1), one of class 1, clear, one of
+    class 1; clipped triangles 0..5 from assembled triangles whose rows are known,
+    one assembled triangle clipped away and one fanned into two."""
+    from vgxsim.kernels.front import flush_segments
+    from vgxsim.stream.opcodes import CLEAR_KIND, POLYGON
+
+    rows = np.array([_row(CLEAR_KIND, 0, 0, -1), _row(POLYGON, 0, 4, 0),
+                     _row(POLYGON, 4, 8, 1), _row(POLYGON, 8, 12, 2),
+                     _row(CLEAR_KIND, 0, 0, -1), _row(POLYGON, 12, 16, 3)], np.int64)
+    rec_of = np.array([0, 1, 2, 3], np.int64)
+    klass = np.array([0, 0, 1, 1], np.int64)
+    rast = np.array([0, 1, 1, 2], np.int64)
+    colour = np.array([0, 1, 0, 0], np.int64)
+    tri_row = np.array([0, 0, 1, 1, 2, 2, 3, 3], np.int64)  # two triangles per row
+    out_src = np.array([0, 1, 2, 2, 4, 6, 7], np.int64)  # 3 and 5 gone, 2 fanned
+    segs, out_rast, present, local = flush_segments(rows, rec_of, klass, rast, colour,
+                                                    tri_row, out_src)
+    # first row, clear, t0, t1, several rasters, colour
+    assert segs.tolist() == [[0, 1, 0, 0, 0, 0], [1, 0, 0, 4, 1, 1], [3, 0, 4, 5, 0, 0],
+                             [4, 1, 0, 0, 0, 0], [5, 0, 5, 7, 0, 0]]
+    assert out_rast.tolist() == [0, 0, 1, 1, 1, 2, 2]
+    assert present[1].tolist() == [True, True, False] and present[4].tolist() == [
+        False, False, True]
+    assert local.tolist() == [0, 0, 1, 1, 0, 0, 0]
