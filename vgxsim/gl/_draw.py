@@ -162,9 +162,14 @@ def _restate(ctx, st) -> None:
     else:
         st.state_memo.clear()  # other parts changed: the records found so far differ
     if idx < 0:
-        idx = ctx.states.intern(ctx)
-        snap = regs._snapshot
         if session.imm is ctx:  # (FAST_CALLS on, immediate mode)
+            # A record made before for this state, kept across flushes (a frame
+            # draws the states of the last one again).
+            idx = ctx.states.intern_kept(ctx)
+        else:
+            idx = ctx.states.intern(ctx)
+        snap = regs._snapshot
+        if session.imm is ctx:
             if len(st.state_memo) >= 256:
                 st.state_memo.clear()
             st.state_memo[id(snap)] = (snap, idx, ctx.states.records[idx])

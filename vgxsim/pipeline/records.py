@@ -212,6 +212,18 @@ class StateTable:
         self._last: DrawState | None = None
         self._index: dict[tuple, int] = {}
         self._lighting_memo: tuple | None = None
+        # Bumped by every clear(): an index found under one generation names the same
+        # record until the next clear (callers of adopt() keep indices by generation).
+        self.generation = 0
+        # adopt()'s index of each record appended in this generation: id -> index.
+        self._where: dict[int, int] = {}
+        # intern_kept()'s records by value, kept across clear(): key -> DrawState.
+        self._kept: dict[tuple, DrawState] = {}
+        # lighting_token()'s memo: (lighting serial, token), and the token of each
+        # lighting binding seen (binding key -> (token, the bound lights), which keeps
+        # the entries whose ids the key holds alive, so no id is reused meanwhile).
+        self._token_memo: tuple = (None, 0)
+        self._tokens: dict[tuple, tuple] = {}
 
     def intern(self, ctx) -> int:
         """Index of the window's current draw state (one record per distinct value:
@@ -266,9 +278,94 @@ class StateTable:
         self._last = rec
         return len(self.records) - 1
 
+    def lighting_token(self, ctx) -> int:
+        """A number that names the window's lighting binding by value, the same for
+        the same binding however often it is rebound: the lmdef generation (every
+        lmdef makes new definitions), the bound material, back material, lighting
+        model and lmcolor mode and the bound lights' eye-space
+        entries (by identity: gl lmbind hands the same entry back for the same light
+        and modelview).  ``lighting_serial``, which every lighting call bumps, only
+        says when to look again."""
+        serial = ctx.lighting_serial
+        memo = self._token_memo
+        if memo[0] == serial:
+            return memo[1]
+        bound = ctx.bound
+        lights = tuple(sorted(bound["lights"].items()))
+        key = (id(ctx.lighting), ctx.lighting.generation, bound["material"],
+               bound.get("backmaterial", 0), bound["lmodel"], ctx.lmcolor_mode,
+               tuple((slot, index, id(entry)) for slot, (index, entry) in lights))
+        hit = self._tokens.get(key)
+        if hit is None:
+            if len(self._tokens) >= 4096:  # (tokens are never reused: see _next_token)
+                self._tokens.clear()
+                self._kept.clear()
+            hit = self._tokens[key] = (_next_token(), lights)
+        token = hit[0]
+        self._token_memo = (serial, token)
+        return token
+
+    def intern_kept(self, ctx) -> int:
+        """:meth:`intern` for a program that draws the same states frame after frame:
+        the record made once for a state is kept across :meth:`clear` and put back in
+        the table (:meth:`adopt`) instead of being made again.  The key is
+        :meth:`intern`'s with :meth:`lighting_token` for the lighting serial (which
+        changes at every lmbind, even of what was bound before); the user planes,
+        fog, depth cue and line flags are named by the vertex serial, which only
+        grows.  A state with a texture bound takes :meth:`intern` (its texgen eye
+        space reads the texture's definition, which no key here names)."""
+        rs = ctx.raster.snapshot()
+        mvp = ctx.matrices.mvp()
+        if rs.texture != 0:
+            return self.intern(ctx)
+        key = (id(rs), id(mvp), ctx.raster.viewport, ctx.depth_range,
+               self.lighting_token(ctx), ctx.concave, ctx.config.rgb,
+               id(ctx.bound["lights"]), ctx.vertex_serial)
+        rec = self._kept.get(key)
+        if rec is not None and rec.raster is rs and rec.mvp is mvp:
+            return self.adopt(rec)
+        idx = self.intern(ctx)
+        rec = self.records[idx]
+        if rec.raster is rs and rec.mvp is mvp:
+            self._kept[key] = rec
+            self._where[id(rec)] = idx
+        return idx
+
+    def adopt(self, rec: DrawState) -> int:
+        """Index of a record made for the window's current state (by
+        :meth:`intern_kept`, possibly before a clear): the one it already has in this
+        generation, else it is appended as :meth:`_new` appends a new record."""
+        i = self._where.get(id(rec))
+        records = self.records
+        if i is not None and i < len(records) and records[i] is rec:
+            return i
+        last = self._last
+        if last is not None and same_state(last, rec):
+            return len(records) - 1
+        if last is not None and same_geometry(last, rec):
+            self.geometry.append(self.geometry[-1])
+        else:
+            self.geometry.append(len(records))
+        records.append(rec)
+        self._last = rec
+        i = self._where[id(rec)] = len(records) - 1
+        return i
+
     def clear(self) -> None:
         self.records.clear()
         self.geometry.clear()
         self._index.clear()
+        self._where.clear()
         self._last = None
         self._lighting_memo = None
+        self.generation += 1
+
+
+_token_count = [0]
+
+
+def _next_token() -> int:
+    """A lighting token never handed out before (process-wide, so a token kept in one
+    table's key cannot name another binding after that table forgets its tokens)."""
+    _token_count[0] += 1
+    return _token_count[0]
