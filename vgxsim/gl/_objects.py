@@ -53,7 +53,7 @@ import numpy as np
 
 from vgxsim import GL
 from vgxsim.pipeline.decode import drain
-from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, T, V
+from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, STATE, SWAP, N, T, V
 from vgxsim.stream.opcodes import C as C_OP
 from vgxsim.stream.recorder import MAX_STREAM_OPS, SPLICE_MIN_FLOATS, Chunk
 
@@ -73,6 +73,7 @@ from ._core import (
     session,
 )
 from ._draw import CLOSER, OPENER, _restate, sync
+from ._raster import stencil
 
 __all__ = ["genobj", "makeobj", "closeobj", "callobj", "delobj", "isobj", "getopenobj",
            "editobj", "maketag", "newtag", "gentag", "istag", "deltag", "objinsert",
@@ -98,6 +99,11 @@ class DisplayObject:
         self.chunks: list | None = None
         if all(isinstance(seg, (Chunk, Tag)) for seg in self.segments):
             self.chunks = [seg for seg in self.segments if isinstance(seg, Chunk)]
+        # callobj's prepared replay (ReplayBlock) when the object is replayable; a new
+        # object (makeobj, closeobj after editobj) starts without one and delobj drops
+        # it with the object, so no block outlives the segments it was made from.
+        self.block: ReplayBlock | None = None
+        self.replayable = _replayable(self.segments)
 
     @property
     def program(self) -> list:
@@ -511,6 +517,10 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
             for ch in chunks:
                 splice(ctx, ch)
             return
+        if dobj.replayable and ctx.prim is None:
+            if dobj.block is None or not _replay(ctx, dobj):
+                _trace(ctx, dobj)
+            return
     _general_callobj(*given((obj,), more), **kw)
 
 
@@ -557,6 +567,10 @@ def _general_callobj(*args, **kwargs) -> None:
             if len(chain) >= MAX_NESTING:
                 raise GLUsageError(f"{describe('callobj', args)}: objects nested more than "
                                    f"{MAX_NESTING} deep (vgxsim's limit, MAX_NESTING)")
+            if inner_obj.replayable and session.imm is ctx and ctx.prim is None:
+                if inner_obj.block is None or not _replay(ctx, inner_obj):
+                    _trace(ctx, inner_obj)
+                continue
             chain.append(inner)
             stack.append((inner_obj.segments, 0))
             continue
@@ -706,6 +720,13 @@ def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
 def splice(ctx, ch: Chunk) -> None:
     """Append a chunk to the window's stream and leave the caller's current
     attributes as the chunk's calls would have."""
+    plan, colour_op = _prologue(ctx, ch)
+    _append(ctx, ch, plan, colour_op)
+
+
+def _prologue(ctx, ch: Chunk) -> tuple:
+    """splice()'s checks and the STATE and SYNC ops before the chunk's own:
+    (plan, colour op)."""
     if ch.needs is not None:
         _check_needs(ctx, ch)
     colour_op = C_OP
@@ -738,6 +759,13 @@ def splice(ctx, ch: Chunk) -> None:
     if (ctx.colour is not st.colour or ctx.normal is not st.normal
             or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
         sync(ctx, st)  # the chunk's vertices start from the caller's attributes
+    return plan, colour_op
+
+
+def _append(ctx, ch: Chunk, plan: SplicePlan, colour_op: int) -> None:
+    """splice() after its prologue: the chunk's ops, and the caller's attributes as
+    the chunk leaves them."""
+    st = ctx.stream
     opened = ch.open
     if opened is not None:
         base_ops, base_fl = len(st), st.n_floats()
@@ -770,6 +798,158 @@ def splice(ctx, ch: Chunk) -> None:
             ctx.gpos = ch.gpos
         if ch.has_lines:
             drain(ctx)
+
+
+# -- prepared replays ----------------------------------------------------------------------
+def _replayable(segments: list) -> bool:
+    """Whether callobj may replay an object from a :class:`ReplayBlock`: it holds only
+    chunks that open and close their primitives, need none open (callobj replays
+    blocks only outside bgn*/end*, where "closed" holds), and are copied into
+    the stream's lists (not spliced as arrays), tags, and stencil() calls -- whose
+    whole effect is the stencil register and the raster snapshot, both functions of
+    the registers before and the arguments (the 1991 shadow faces: stencil, then a
+    quad, per edge).  Nothing in it nests, so editing another object cannot change
+    what it draws."""
+    chunks = 0
+    for seg in segments:
+        if isinstance(seg, Chunk):
+            if (seg.needs not in (None, "closed") or seg.open is not None or not seg.touched_prim
+                    or seg.texcoord is not None or seg.gpos is not None or seg.has_lines
+                    or len(seg.fl) >= SPLICE_MIN_FLOATS):
+                return False
+            chunks += 1
+        elif not isinstance(seg, Tag) and seg[0] is not stencil:
+            return False
+    return chunks > 0
+
+
+class ReplayBlock:
+    """What one callobj of a replayable object appended and left behind, kept to be
+    appended again while the caller's state is the same (:func:`_replay`).
+
+    The first chunk's draw state and attributes are recorded live at each replay
+    (what they depend on -- the stream's last STATE op and attributes -- is the
+    caller's); everything after that is a function of the key attributes:
+
+    Attributes
+    ----------
+    ctx, entry_snap, mvp, depth, token, concave, vertex_serial, rgb : object
+        The key: the window, its raster snapshot before the call, composite matrix,
+        depth range, lighting token (StateTable.lighting_token), concave flag,
+        vertex serial and colour mode.
+    colour, normal, last_sent, lmcolor_set : object
+        The key's current attributes (identity).
+    first_reg, first_snap : object
+        The stencil register and raster snapshot at the first chunk.
+    ops, fl : list
+        What the object appends after the first chunk's STATE and SYNC ops.
+    states : list of (int, DrawState)
+        Where ``ops`` holds a STATE op's index, and its record; ``generation`` is
+        the state table generation the indices in ``ops`` were found in.
+    exit_reg, exit_snap, exit_raster, exit_colour, exit_normal, exit_sent, exit_lms :
+        The stencil register, raster snapshot, the stream's last recorded snapshot
+        and the current attributes after the call.
+    """
+
+    __slots__ = ("ctx", "entry_snap", "mvp", "depth", "token", "concave", "vertex_serial",
+                 "rgb", "colour", "normal", "last_sent", "lmcolor_set", "first_reg",
+                 "first_snap", "ops", "fl", "states", "generation", "exit_reg", "exit_snap",
+                 "exit_raster", "exit_colour", "exit_normal", "exit_sent", "exit_lms")
+
+
+def _replay(ctx, dobj: DisplayObject) -> bool:
+    """callobj of a replayable object from its block, if the caller's state is the
+    block's key (True); else False, and nothing is done."""
+    blk = dobj.block
+    regs = ctx.raster
+    snap = regs._snapshot
+    if snap is None:
+        snap = regs.snapshot()  # (a cache of the registers: filling it changes nothing)
+    if not (blk.ctx is ctx and blk.entry_snap is snap and ctx.matrices._mvp is blk.mvp
+            and ctx.depth_range is blk.depth and ctx.concave is blk.concave
+            and ctx.vertex_serial == blk.vertex_serial and ctx.colour is blk.colour
+            and ctx.normal is blk.normal and ctx.last_sent is blk.last_sent
+            and ctx.lmcolor_set is blk.lmcolor_set and ctx.config.rgb is blk.rgb
+            and ctx.states.lighting_token(ctx) == blk.token):
+        return False
+    st = ctx.stream
+    if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
+        return False  # (the general replay drains first)
+    regs.stencil = blk.first_reg
+    regs._snapshot = first = blk.first_snap
+    # splice()'s prologue of the first chunk: record the draw state and attributes
+    # the stream does not hold yet.
+    if not (first is st.raster and blk.mvp is st.mvp and blk.depth is st.depth
+            and ctx.lighting_serial == st.lighting_serial and blk.concave is st.concave
+            and blk.vertex_serial == st.vertex_serial):
+        _restate(ctx, st)
+    if (blk.colour is not st.colour or blk.normal is not st.normal
+            or blk.last_sent is not st.sent or blk.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)
+    table = ctx.states
+    ops = blk.ops
+    if blk.generation != table.generation:  # a flush emptied the table: index anew
+        adopt = table.adopt
+        for pos, rec in blk.states:
+            ops[pos] = adopt(rec)
+        blk.generation = table.generation
+    st.ops.extend(ops)
+    st.fl.extend(blk.fl)
+    regs.stencil = blk.exit_reg
+    regs._snapshot = blk.exit_snap
+    st.raster = blk.exit_raster
+    ctx.colour = st.colour = blk.exit_colour
+    ctx.normal = st.normal = blk.exit_normal
+    ctx.last_sent = st.sent = blk.exit_sent
+    ctx.lmcolor_set = st.lmcolor_set = blk.exit_lms
+    return True
+
+
+def _trace(ctx, dobj: DisplayObject) -> None:
+    """callobj of a replayable object, segment by segment as the general replay does
+    it, keeping what it appends and leaves as the object's :class:`ReplayBlock`
+    (only when nothing flushed the stream meanwhile)."""
+    regs, st, table = ctx.raster, ctx.stream, ctx.states
+    blk = ReplayBlock()
+    blk.ctx = ctx
+    blk.entry_snap = regs.snapshot()
+    blk.mvp = ctx.matrices.mvp()
+    blk.depth, blk.concave = ctx.depth_range, ctx.concave
+    blk.vertex_serial, blk.rgb = ctx.vertex_serial, ctx.config.rgb
+    blk.token = table.lighting_token(ctx)
+    blk.colour, blk.normal = ctx.colour, ctx.normal
+    blk.last_sent, blk.lmcolor_set = ctx.last_sent, ctx.lmcolor_set
+    generation, parts = table.generation, len(st.parts)
+    start = None
+    states = []
+    for seg in dobj.segments:
+        if isinstance(seg, Tag):
+            continue
+        if not isinstance(seg, Chunk):
+            seg[0](*seg[1])
+            continue
+        if start is None:
+            blk.first_reg, blk.first_snap = regs.stencil, regs.snapshot()
+        before = len(st.ops)
+        plan, colour_op = _prologue(ctx, seg)
+        if start is None:
+            start = (len(st.ops), len(st.fl))
+        elif len(st.ops) > before and st.ops[before] == STATE:
+            states.append((before - start[0], st.ops[before + 1]))
+        _append(ctx, seg, plan, colour_op)
+    if (table.generation != generation or len(st.parts) != parts or start is None
+            or ctx.prim is not None):
+        return
+    records = table.records
+    blk.states = [(pos, records[idx]) for pos, idx in states]
+    if any(rec.raster.texture != 0 for _pos, rec in blk.states):
+        return  # (such records are made by StateTable.intern, not kept)
+    blk.ops, blk.fl = st.ops[start[0]:], st.fl[start[1]:]
+    blk.generation = generation
+    blk.exit_reg, blk.exit_snap, blk.exit_raster = regs.stencil, regs._snapshot, st.raster
+    blk.exit_colour, blk.exit_normal = ctx.colour, ctx.normal
+    blk.exit_sent, blk.exit_lms = ctx.last_sent, ctx.lmcolor_set
+    dobj.block = blk
 
 
 @gl_function(record=False)
