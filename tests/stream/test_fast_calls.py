@@ -1,7 +1,9 @@
 """The common calls' valid paths (gl/_core.py FAST_CALLS) draw what their general
 paths draw: the same random IRIS GL call sequences, immediately and through nested
 display objects, give identical colour, z and stencil planes with the switch on and
-off."""
+off; and so do multi-frame programs whose objects callobj replays from prepared
+blocks and whose draw-state records are kept across flushes, with the edits that
+must make them stale between frames (tests/stream/frames_of_objects.py)."""
 
 from __future__ import annotations
 
@@ -11,6 +13,7 @@ import pytest
 from vgxsim.gl import _core
 from vgxsim.gl._core import session
 
+from .frames_of_objects import FRAME_SEEDS, render_frames
 from .random_calls import SEEDS, render, sequence
 
 
@@ -78,3 +81,43 @@ def test_the_switch_decides_which_path_runs(monkeypatch):
     finally:
         gl.winclose(gid)
     assert session.imm is None
+
+
+def _frames(seed: int, fast: bool, monkeypatch) -> list:
+    monkeypatch.setattr(_core, "FAST_CALLS", fast)
+    session.refresh()
+    try:
+        return render_frames(seed)
+    finally:
+        monkeypatch.setattr(_core, "FAST_CALLS", True)
+        session.refresh()
+        session.reset()
+
+
+@pytest.mark.parametrize("seed", list(FRAME_SEEDS))
+def test_replayed_objects_and_kept_records_give_identical_planes(seed, monkeypatch):
+    from vgxsim.gl import _objects
+    from vgxsim.pipeline.records import StateTable
+
+    used = {"replays": 0, "kept": 0}
+    replay, adopt = _objects._replay, StateTable.adopt
+
+    def counting_replay(ctx, dobj):
+        done = replay(ctx, dobj)
+        used["replays"] += done
+        return done
+
+    def counting_adopt(self, rec):
+        used["kept"] += 1
+        return adopt(self, rec)
+
+    monkeypatch.setattr(_objects, "_replay", counting_replay)
+    monkeypatch.setattr(StateTable, "adopt", counting_adopt)
+    fast = _frames(seed, True, monkeypatch)
+    # Both kept paths ran (else the comparison below would test nothing of them).
+    assert used["replays"] > 0 and used["kept"] > 0
+    slow = _frames(seed, False, monkeypatch)
+    assert any(f["stencil"].any() and f["rgba"][..., :3].any() for f in fast)
+    for i, (a, b) in enumerate(zip(fast, slow, strict=True)):
+        for k in a:
+            assert np.array_equal(a[k], b[k]), (i, k)

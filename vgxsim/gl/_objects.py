@@ -99,10 +99,12 @@ class DisplayObject:
         self.chunks: list | None = None
         if all(isinstance(seg, (Chunk, Tag)) for seg in self.segments):
             self.chunks = [seg for seg in self.segments if isinstance(seg, Chunk)]
-        # callobj's prepared replay (ReplayBlock) when the object is replayable; a new
-        # object (makeobj, closeobj after editobj) starts without one and delobj drops
-        # it with the object, so no block outlives the segments it was made from.
-        self.block: ReplayBlock | None = None
+        # callobj's prepared replays (ReplayBlock) when the object is replayable, by
+        # lighting token (an object drawn once per material or light keeps one each);
+        # a new object (makeobj, closeobj after editobj) starts without any and delobj
+        # drops them with the object, so no block outlives the segments it was made
+        # from.
+        self.blocks: dict[int, ReplayBlock] = {}
         self.replayable = _replayable(self.segments)
 
     @property
@@ -518,7 +520,7 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
                 splice(ctx, ch)
             return
         if dobj.replayable and ctx.prim is None:
-            if dobj.block is None or not _replay(ctx, dobj):
+            if not _replay(ctx, dobj):
                 _trace(ctx, dobj)
             return
     _general_callobj(*given((obj,), more), **kw)
@@ -568,7 +570,7 @@ def _general_callobj(*args, **kwargs) -> None:
                 raise GLUsageError(f"{describe('callobj', args)}: objects nested more than "
                                    f"{MAX_NESTING} deep (vgxsim's limit, MAX_NESTING)")
             if inner_obj.replayable and session.imm is ctx and ctx.prim is None:
-                if inner_obj.block is None or not _replay(ctx, inner_obj):
+                if not _replay(ctx, inner_obj):
                     _trace(ctx, inner_obj)
                 continue
             chain.append(inner)
@@ -858,9 +860,11 @@ class ReplayBlock:
 
 
 def _replay(ctx, dobj: DisplayObject) -> bool:
-    """callobj of a replayable object from its block, if the caller's state is the
+    """callobj of a replayable object from a block, if the caller's state is the
     block's key (True); else False, and nothing is done."""
-    blk = dobj.block
+    blk = dobj.blocks.get(ctx.states.lighting_token(ctx))
+    if blk is None:
+        return False
     regs = ctx.raster
     snap = regs._snapshot
     if snap is None:
@@ -869,8 +873,7 @@ def _replay(ctx, dobj: DisplayObject) -> bool:
             and ctx.depth_range is blk.depth and ctx.concave is blk.concave
             and ctx.vertex_serial == blk.vertex_serial and ctx.colour is blk.colour
             and ctx.normal is blk.normal and ctx.last_sent is blk.last_sent
-            and ctx.lmcolor_set is blk.lmcolor_set and ctx.config.rgb is blk.rgb
-            and ctx.states.lighting_token(ctx) == blk.token):
+            and ctx.lmcolor_set is blk.lmcolor_set and ctx.config.rgb is blk.rgb):
         return False
     st = ctx.stream
     if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
@@ -935,7 +938,7 @@ def _trace(ctx, dobj: DisplayObject) -> None:
         if start is None:
             start = (len(st.ops), len(st.fl))
         elif len(st.ops) > before and st.ops[before] == STATE:
-            states.append((before - start[0], st.ops[before + 1]))
+            states.append((before + 1 - start[0], st.ops[before + 1]))  # STATE's index
         _append(ctx, seg, plan, colour_op)
     if (table.generation != generation or len(st.parts) != parts or start is None
             or ctx.prim is not None):
@@ -949,7 +952,9 @@ def _trace(ctx, dobj: DisplayObject) -> None:
     blk.exit_reg, blk.exit_snap, blk.exit_raster = regs.stencil, regs._snapshot, st.raster
     blk.exit_colour, blk.exit_normal = ctx.colour, ctx.normal
     blk.exit_sent, blk.exit_lms = ctx.last_sent, ctx.lmcolor_set
-    dobj.block = blk
+    if len(dobj.blocks) >= 8:
+        dobj.blocks.clear()
+    dobj.blocks[blk.token] = blk
 
 
 @gl_function(record=False)
