@@ -106,6 +106,11 @@ class DisplayObject:
         # from.
         self.blocks: dict[int, ReplayBlock] = {}
         self.replayable = _replayable(self.segments)
+        # The one chunk of a chunk-only object that callobj's inlined splice takes
+        # (small, closed, nothing rare), else None.
+        self.single: Chunk | None = None
+        if self.chunks is not None and len(self.chunks) == 1 and _replayable(self.chunks):
+            self.single = self.chunks[0]
 
     @property
     def program(self) -> list:
@@ -514,6 +519,49 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
             if obj > MAX_OBJECT:
                 _object_arg("callobj", (obj,))  # raises
             return
+        ch = dobj.single
+        if ch is not None and ctx.prim is None:
+            # splice() of the object's one chunk, inlined (a quad's callobj is mostly
+            # the calls around the copy): what its checks decide -- no primitive need
+            # be open, none is left open, nothing rare -- was decided at closeobj.
+            colour_op = C_OP
+            if ch.last_colour is not None:
+                if not ctx.config.rgb:
+                    return splice(ctx, ch)  # raises: RGB colour calls in colour map mode
+                bound = ctx.bound
+                if bound["material"] != 0 and bound["lmodel"] != 0:
+                    colour_op = _colour_op(ctx)
+            plan = ch.plans.get(colour_op)  # (a closed object's chunks never grow)
+            if plan is None:
+                plan = plan_of(ch, colour_op)
+            st = ctx.stream
+            if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
+                drain(ctx)
+            snap = ctx.raster._snapshot
+            if not (snap is st.raster and snap is not None
+                    and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
+                    and ctx.lighting_serial == st.lighting_serial
+                    and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
+                _restate(ctx, st)
+            colour = ctx.colour
+            if (colour is not st.colour or ctx.normal is not st.normal
+                    or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+                sync(ctx, st)
+            st.ops.extend(plan.ops)
+            st.fl.extend(plan.fl)
+            if plan.plain:  # sets the colour and last_sent only (a colour, no normal)
+                ctx.colour = st.colour = plan.colour
+                ctx.last_sent = st.sent = plan.last_sent
+                return
+            if plan.colour is not None:
+                ctx.colour = st.colour = plan.colour
+                if plan.lmcolor_set:
+                    ctx.lmcolor_set = st.lmcolor_set = True
+            if plan.normal is not None:
+                ctx.normal = st.normal = plan.normal
+            if plan.last_sent is not None:
+                ctx.last_sent = st.sent = plan.last_sent
+            return
         chunks = dobj.chunks
         if chunks is not None:  # only vertex-stream calls: nothing nests
             for ch in chunks:
@@ -687,10 +735,12 @@ class SplicePlan:
         unchanged); ``lmcolor_set`` True when a colour call reached the material.
     rare : bool
         The chunk sets a texture coordinate or the graphics position, or draws lines.
+    plain : bool
+        The chunk leaves a new colour and ``last_sent`` only (no normal, no material).
     """
 
     __slots__ = ("ops", "fl", "big", "colour", "normal", "last_sent", "lmcolor_set",
-                 "rare", "n_ops")
+                 "rare", "n_ops", "plain")
 
 
 def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
@@ -715,6 +765,8 @@ def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
     else:
         plan.last_sent = None
     plan.rare = ch.texcoord is not None or ch.gpos is not None or ch.has_lines
+    plan.plain = (plan.colour is not None and not plan.lmcolor_set and plan.normal is None
+                  and plan.last_sent is not None)
     ch.plans[colour_op] = plan
     return plan
 
