@@ -897,9 +897,10 @@ class ReplayBlock:
         The stencil register and raster snapshot at the first chunk.
     ops, fl : list
         What the object appends after the first chunk's STATE and SYNC ops.
-    states : list of (int, DrawState)
-        Where ``ops`` holds a STATE op's index, and its record; ``generation`` is
-        the state table generation the indices in ``ops`` were found in.
+    states : list of (DrawState, list of int)
+        Each record of the STATE ops in ``ops``, in order of first use, and where
+        ``ops`` holds its index; ``generation`` is the state table generation the
+        indices in ``ops`` were found in.
     exit_reg, exit_snap, exit_raster, exit_colour, exit_normal, exit_sent, exit_lms :
         The stencil register, raster snapshot, the stream's last recorded snapshot
         and the current attributes after the call.
@@ -945,8 +946,10 @@ def _replay(ctx, dobj: DisplayObject) -> bool:
     ops = blk.ops
     if blk.generation != table.generation:  # a flush emptied the table: index anew
         adopt = table.adopt
-        for pos, rec in blk.states:
-            ops[pos] = adopt(rec)
+        for rec, slots in blk.states:
+            i = adopt(rec)
+            for pos in slots:
+                ops[pos] = i
         blk.generation = table.generation
     st.ops.extend(ops)
     st.fl.extend(blk.fl)
@@ -996,8 +999,12 @@ def _trace(ctx, dobj: DisplayObject) -> None:
             or ctx.prim is not None):
         return
     records = table.records
-    blk.states = [(pos, records[idx]) for pos, idx in states]
-    if any(rec.raster.texture != 0 for _pos, rec in blk.states):
+    slots: dict[int, tuple] = {}  # id(record) -> (record, its STATE ops' index slots)
+    for pos, idx in states:
+        rec = records[idx]
+        slots.setdefault(id(rec), (rec, []))[1].append(pos)
+    blk.states = list(slots.values())
+    if any(rec.raster.texture != 0 for rec, _slots in blk.states):
         return  # (such records are made by StateTable.intern, not kept)
     blk.ops, blk.fl = st.ops[start[0]:], st.fl[start[1]:]
     blk.generation = generation

@@ -215,8 +215,12 @@ class StateTable:
         # Bumped by every clear(): an index found under one generation names the same
         # record until the next clear (callers of adopt() keep indices by generation).
         self.generation = 0
-        # adopt()'s index of each record appended in this generation: id -> index.
-        self._where: dict[int, int] = {}
+        # adopt()'s index of each kept record in this generation: id -> (index,
+        # record), and whether a kept record draws as the one before it:
+        # (id(last), id(record)) -> (last, record, 2: same_state, 1: same_geometry,
+        # 0: neither).  (The records in the values keep their ids from being reused.)
+        self._where: dict[int, tuple] = {}
+        self._pairs: dict[tuple, tuple] = {}
         # intern_kept()'s records by value, kept across clear(): key -> DrawState.
         self._kept: dict[tuple, DrawState] = {}
         # lighting_token()'s memo: (lighting serial, token), and the token of each
@@ -282,25 +286,28 @@ class StateTable:
         """A number that names the window's lighting binding by value, the same for
         the same binding however often it is rebound: the lmdef generation (every
         lmdef makes new definitions), the bound material, back material, lighting
-        model and lmcolor mode and the bound lights' eye-space
-        entries (by identity: gl lmbind hands the same entry back for the same light
-        and modelview).  ``lighting_serial``, which every lighting call bumps, only
+        model and lmcolor mode and the bound lights' (index, eye-space entry) pairs
+        (by identity: gl lmbind hands the same pair back for the same light and
+        modelview).  ``lighting_serial``, which every lighting call bumps, only
         says when to look again."""
         serial = ctx.lighting_serial
         memo = self._token_memo
         if memo[0] == serial:
             return memo[1]
         bound = ctx.bound
-        lights = tuple(sorted(bound["lights"].items()))
+        lights = bound["lights"]
+        # (The slots in binding order and their (index, entry) pairs by identity: the
+        # same mapping gives the same key as long as it is bound in the same order.)
+        bound_lights = tuple(lights.values())
         key = (id(ctx.lighting), ctx.lighting.generation, bound["material"],
                bound.get("backmaterial", 0), bound["lmodel"], ctx.lmcolor_mode,
-               tuple((slot, index, id(entry)) for slot, (index, entry) in lights))
+               tuple(lights), tuple(map(id, bound_lights)))
         hit = self._tokens.get(key)
         if hit is None:
             if len(self._tokens) >= 4096:  # (tokens are never reused: see _next_token)
                 self._tokens.clear()
                 self._kept.clear()
-            hit = self._tokens[key] = (_next_token(), lights)
+            hit = self._tokens[key] = (_next_token(), bound_lights)
         token = hit[0]
         self._token_memo = (serial, token)
         return token
@@ -328,27 +335,38 @@ class StateTable:
         rec = self.records[idx]
         if rec.raster is rs and rec.mvp is mvp:
             self._kept[key] = rec
-            self._where[id(rec)] = idx
+            self._where[id(rec)] = (idx, rec)
         return idx
 
     def adopt(self, rec: DrawState) -> int:
         """Index of a record made for the window's current state (by
-        :meth:`intern_kept`, possibly before a clear): the one it already has in this
-        generation, else it is appended as :meth:`_new` appends a new record."""
-        i = self._where.get(id(rec))
+        :meth:`intern_kept`, possibly before a clear): the one it got first in this
+        generation, else it is appended as :meth:`_new` appends a new record (or
+        given the last one's index when that draws alike)."""
+        hit = self._where.get(id(rec))
+        if hit is not None and hit[1] is rec:
+            return hit[0]
         records = self.records
-        if i is not None and i < len(records) and records[i] is rec:
-            return i
         last = self._last
-        if last is not None and same_state(last, rec):
-            return len(records) - 1
-        if last is not None and same_geometry(last, rec):
-            self.geometry.append(self.geometry[-1])
+        if last is None:
+            joins = 0
         else:
-            self.geometry.append(len(records))
-        records.append(rec)
-        self._last = rec
-        i = self._where[id(rec)] = len(records) - 1
+            pair = self._pairs.get((id(last), id(rec)))
+            if pair is not None and pair[0] is last and pair[1] is rec:
+                joins = pair[2]
+            else:  # same_state and same_geometry, once per pair of kept records
+                joins = 2 if same_state(last, rec) else 1 if same_geometry(last, rec) else 0
+                if len(self._pairs) >= 4096:
+                    self._pairs.clear()
+                self._pairs[(id(last), id(rec))] = (last, rec, joins)
+        if joins == 2:
+            i = len(records) - 1
+        else:
+            self.geometry.append(self.geometry[-1] if joins else len(records))
+            records.append(rec)
+            self._last = rec
+            i = len(records) - 1
+        self._where[id(rec)] = (i, rec)
         return i
 
     def clear(self) -> None:
