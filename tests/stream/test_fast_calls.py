@@ -83,19 +83,23 @@ def test_the_switch_decides_which_path_runs(monkeypatch):
     assert session.imm is None
 
 
-def _frames(seed: int, fast: bool, monkeypatch) -> list:
+def _frames(seed: int, fast: bool, replay: bool, monkeypatch) -> list:
     monkeypatch.setattr(_core, "FAST_CALLS", fast)
+    monkeypatch.setattr(_core, "REPLAY_OBJECTS", replay)
     session.refresh()
     try:
         return render_frames(seed)
     finally:
         monkeypatch.setattr(_core, "FAST_CALLS", True)
+        monkeypatch.setattr(_core, "REPLAY_OBJECTS", True)
         session.refresh()
         session.reset()
 
 
 @pytest.mark.parametrize("seed", list(FRAME_SEEDS))
 def test_replayed_objects_and_kept_records_give_identical_planes(seed, monkeypatch):
+    """REPLAY_OBJECTS on, off (the FAST_CALLS paths alone) and every fast path off
+    draw the same planes, frame by frame."""
     from vgxsim.gl import _objects
     from vgxsim.pipeline.records import StateTable
 
@@ -113,11 +117,16 @@ def test_replayed_objects_and_kept_records_give_identical_planes(seed, monkeypat
 
     monkeypatch.setattr(_objects, "_replay", counting_replay)
     monkeypatch.setattr(StateTable, "adopt", counting_adopt)
-    fast = _frames(seed, True, monkeypatch)
+    replayed = _frames(seed, True, True, monkeypatch)
     # Both kept paths ran (else the comparison below would test nothing of them).
     assert used["replays"] > 0 and used["kept"] > 0
-    slow = _frames(seed, False, monkeypatch)
-    assert any(f["stencil"].any() and f["rgba"][..., :3].any() for f in fast)
-    for i, (a, b) in enumerate(zip(fast, slow, strict=True)):
-        for k in a:
-            assert np.array_equal(a[k], b[k]), (i, k)
+    used["replays"] = used["kept"] = 0
+    fast = _frames(seed, True, False, monkeypatch)
+    assert used["replays"] == 0 and used["kept"] == 0  # the switch turns them off
+    slow = _frames(seed, False, True, monkeypatch)
+    assert used["replays"] == 0 and used["kept"] == 0  # (and so does FAST_CALLS)
+    assert any(f["stencil"].any() and f["rgba"][..., :3].any() for f in replayed)
+    for other in (fast, slow):
+        for i, (a, b) in enumerate(zip(replayed, other, strict=True)):
+            for k in a:
+                assert np.array_equal(a[k], b[k]), (i, k)

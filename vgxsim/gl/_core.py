@@ -91,6 +91,16 @@ class Window:
 #: ``session.refresh()`` after changing it.
 FAST_CALLS = True
 
+#: Replay switch (issue 6: callobj and the frame's front end), in effect where
+#: :data:`FAST_CALLS` is.  True: callobj replays an object of stencil calls and small
+#: closed chunks from a prepared block while the caller's state is the block's key
+#: (gl/_objects.py ReplayBlock), splices a one-chunk object inline, and draw-state
+#: records and lmbind(LIGHTn)'s eye-space light entries are kept from one flush to
+#: the next (StateTable.intern_kept).  False: those calls take the FAST_CALLS paths
+#: they took before (the planes are the same either way, tests/stream/
+#: test_fast_calls.py).  Read at each call: no refresh needed.
+REPLAY_OBJECTS = True
+
 
 class _Windows(dict):
     """The session's windows by gid: a dict that tells its session when it changes,

@@ -44,6 +44,7 @@ from vgxsim.pipeline.decode import drain
 from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, T, V
 from vgxsim.stream.recorder import MAX_STREAM_OPS
 
+from . import _core
 from ._core import (
     _NO,
     GLTypeError,
@@ -162,7 +163,7 @@ def _restate(ctx, st) -> None:
     else:
         st.state_memo.clear()  # other parts changed: the records found so far differ
     if idx < 0:
-        if session.imm is ctx:  # (FAST_CALLS on, immediate mode)
+        if session.imm is ctx and _core.REPLAY_OBJECTS:  # (immediate mode)
             # A record made before for this state, kept across flushes (a frame
             # draws the states of the last one again).
             idx = ctx.states.intern_kept(ctx)

@@ -23,6 +23,7 @@ from vgxsim import GL
 from vgxsim.lighting import LightingError, light_to_eye
 from vgxsim.tokens import Token
 
+from . import _core
 from ._core import (
     _NO,
     GLTypeError,
@@ -167,7 +168,7 @@ def lmbind(target=_NO, index=_NO, /, *more, **kw) -> None:
                 ctx.lmcolor_set = False
             return
         slot = _LIGHTS.get(target)
-        if slot is not None:
+        if slot is not None and _core.REPLAY_OBJECTS:
             if not index:  # Context.bind_light(slot, 0)
                 ctx.lighting_serial += 1
                 ctx.bound["lights"].pop(slot, None)

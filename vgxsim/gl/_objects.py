@@ -28,6 +28,15 @@ bgn*/end* nesting inside the object); a call that fails raises at once and leave
 object as it was.  What depends on the caller -- a vertex of a primitive the caller
 opened, a colour call in a colour-map window -- is checked at the callobj.
 
+**Prepared replays** (``_core.REPLAY_OBJECTS``).  An object of stencil() calls and
+small closed chunks (the 1991 program's cached shadow faces) is replayed from a
+:class:`ReplayBlock`: what the first callobj appended, appended again while the
+caller's state is the same (identities of the raster snapshot, matrices,
+attributes; the lighting by value, StateTable.lighting_token), its STATE ops
+re-indexed once per flush.  A block belongs to one DisplayObject, which is never
+edited in place, so makeobj, editobj/closeobj and delobj of its number leave no
+stale block; an object that nests others never has one.
+
 **Nesting.**  callobj inside objects runs on an explicit stack, not Python's:
 at most :data:`MAX_NESTING` objects deep (a GLUsageError past it).
 
@@ -57,6 +66,7 @@ from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, STATE, SWA
 from vgxsim.stream.opcodes import C as C_OP
 from vgxsim.stream.recorder import MAX_STREAM_OPS, SPLICE_MIN_FLOATS, Chunk
 
+from . import _core
 from ._core import (
     _NO,
     GLTypeError,
@@ -520,7 +530,7 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
                 _object_arg("callobj", (obj,))  # raises
             return
         ch = dobj.single
-        if ch is not None and ctx.prim is None:
+        if ch is not None and ctx.prim is None and _core.REPLAY_OBJECTS:
             # splice() of the object's one chunk, inlined (a quad's callobj is mostly
             # the calls around the copy): what its checks decide -- no primitive need
             # be open, none is left open, nothing rare -- was decided at closeobj.
@@ -567,7 +577,7 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
             for ch in chunks:
                 splice(ctx, ch)
             return
-        if dobj.replayable and ctx.prim is None:
+        if dobj.replayable and ctx.prim is None and _core.REPLAY_OBJECTS:
             if not _replay(ctx, dobj):
                 _trace(ctx, dobj)
             return
@@ -617,7 +627,8 @@ def _general_callobj(*args, **kwargs) -> None:
             if len(chain) >= MAX_NESTING:
                 raise GLUsageError(f"{describe('callobj', args)}: objects nested more than "
                                    f"{MAX_NESTING} deep (vgxsim's limit, MAX_NESTING)")
-            if inner_obj.replayable and session.imm is ctx and ctx.prim is None:
+            if (inner_obj.replayable and session.imm is ctx and ctx.prim is None
+                    and _core.REPLAY_OBJECTS):
                 if not _replay(ctx, inner_obj):
                     _trace(ctx, inner_obj)
                 continue
