@@ -82,9 +82,10 @@ class Window:
 
 
 #: Fast path switch (issue 6: the common calls under 1 us).  True: the common calls
-#: (v3f, n3f, c3f, cpack, bgn*/end*, stencil, lmbind, zwritemask, wmpack, the matrix
-#: stack, callobj) find the window through :attr:`_Session.imm` and take a valid path
-#: of a few plain-value checks; anything else -- recording, a keyword, a wrong count
+#: (v3f, n3f, c3f, cpack, bgn*/end*, stencil, lmbind, zwritemask, wmpack,
+#: blendfunction, the matrix stack, callobj) find the window through
+#: :attr:`_Session.imm` and take a valid path of a few plain-value checks; anything
+#: else -- recording, a keyword, a wrong count
 #: or type, an out-of-range value -- goes to the call's general path, which validates
 #: and raises as it always did.  False: every call takes its general path (the planes
 #: are the same either way, tests/gl/test_fast_calls.py).  Call

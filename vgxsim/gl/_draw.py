@@ -145,6 +145,12 @@ def _restate(ctx, st) -> None:
     """Record the window's draw state (a STATE op) if it changed since the last one."""
     if same_state(ctx, st):
         return
+    _restate_changed(ctx, st)
+
+
+def _restate_changed(ctx, st) -> None:
+    """:func:`_restate` where the caller has found the state changed (``same_state``
+    false)."""
     regs = ctx.raster
     snap = regs._snapshot
     idx = -1

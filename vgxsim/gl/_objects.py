@@ -82,7 +82,7 @@ from ._core import (
     record_or_refuse,
     session,
 )
-from ._draw import CLOSER, OPENER, _restate, sync
+from ._draw import CLOSER, OPENER, _restate_changed, sync
 from ._raster import stencil
 
 __all__ = ["genobj", "makeobj", "closeobj", "callobj", "delobj", "isobj", "getopenobj",
@@ -552,7 +552,7 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
                     and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
                     and ctx.lighting_serial == st.lighting_serial
                     and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
-                _restate(ctx, st)
+                _restate_changed(ctx, st)
             colour = ctx.colour
             if (colour is not st.colour or ctx.normal is not st.normal
                     or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
@@ -820,7 +820,7 @@ def _prologue(ctx, ch: Chunk) -> tuple:
                     and ctx.lighting_serial == st.lighting_serial
                     and ctx.concave is st.concave
                     and ctx.vertex_serial == st.vertex_serial):
-                _restate(ctx, st)
+                _restate_changed(ctx, st)
     if (ctx.colour is not st.colour or ctx.normal is not st.normal
             or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
         sync(ctx, st)  # the chunk's vertices start from the caller's attributes
@@ -949,7 +949,7 @@ def _replay(ctx, dobj: DisplayObject) -> bool:
     if not (first is st.raster and blk.mvp is st.mvp and blk.depth is st.depth
             and ctx.lighting_serial == st.lighting_serial and blk.concave is st.concave
             and blk.vertex_serial == st.vertex_serial):
-        _restate(ctx, st)
+        _restate_changed(ctx, st)
     if (blk.colour is not st.colour or blk.normal is not st.normal
             or blk.last_sent is not st.sent or blk.lmcolor_set is not st.lmcolor_set):
         sync(ctx, st)
