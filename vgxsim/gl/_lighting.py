@@ -162,7 +162,20 @@ def lmbind(target=_NO, index=_NO, /, *more, **kw) -> None:
         key = _BOUND_KEY.get(target)
         if key is not None and (not index or ctx.lighting.is_defined(_TARGET_DEF[target][0],
                                                                        index)):
-            ctx.lighting_serial += 1  # the stream records the draw state anew
+            tbl = ctx.states
+            if tbl.token_serial == ctx.lighting_serial and _core.REPLAY_OBJECTS:
+                # The lighting token before this call is known: the one after it is
+                # a function of it and (target, index), found once
+                # (StateTable.lighting_token names bindings by value).
+                code = (tbl.token << 20) | (_MOVE_OF[target] << 16) | index
+                ctx.lighting_serial += 1
+                moved = tbl.moves.get(code)
+                if moved is not None:
+                    tbl.token_serial, tbl.token = ctx.lighting_serial, moved
+                else:
+                    tbl.move = (code, ctx.lighting_serial)
+            else:
+                ctx.lighting_serial += 1  # the stream records the draw state anew
             ctx.bound[key] = index
             if key == "material":
                 ctx.lmcolor_set = False
@@ -212,6 +225,8 @@ def _light_memo(ctx) -> dict:
 
 
 _MATERIAL = int(GL.MATERIAL)
+#: Each non-light target's number in a lighting-token move code (StateTable.moves).
+_MOVE_OF = {int(GL.MATERIAL): 0, int(GL.BACKMATERIAL): 1, int(GL.LMODEL): 2}
 #: Which ``Context.bound`` entry each non-light lmbind target sets.
 _BOUND_KEY = {int(GL.MATERIAL): "material", int(GL.BACKMATERIAL): "backmaterial",
               int(GL.LMODEL): "lmodel"}

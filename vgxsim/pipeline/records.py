@@ -226,7 +226,13 @@ class StateTable:
         # lighting_token()'s memo: (lighting serial, token), and the token of each
         # lighting binding seen (binding key -> (token, the bound lights), which keeps
         # the entries whose ids the key holds alive, so no id is reused meanwhile).
-        self._token_memo: tuple = (None, 0)
+        self.token_serial: int | None = None
+        self.token = 0
+        # Moves between tokens that one binding call makes (move_code() -> token),
+        # filled in by lighting_token after the call that armed ``move``: (code,
+        # serial after the call), set by the gl layer's lmbind.
+        self.moves: dict[int, int] = {}
+        self.move: tuple | None = None
         self._tokens: dict[tuple, tuple] = {}
 
     def intern(self, ctx) -> int:
@@ -289,11 +295,11 @@ class StateTable:
         model and lmcolor mode and the bound lights' (index, eye-space entry) pairs
         (by identity: gl lmbind hands the same pair back for the same light and
         modelview).  ``lighting_serial``, which every lighting call bumps, only
-        says when to look again."""
+        says when to look again (and a binding call that knows where it moves the
+        token, :attr:`moves`, sets it at once: gl lmbind)."""
         serial = ctx.lighting_serial
-        memo = self._token_memo
-        if memo[0] == serial:
-            return memo[1]
+        if self.token_serial == serial:
+            return self.token
         bound = ctx.bound
         lights = bound["lights"]
         # (The slots in binding order and their (index, entry) pairs by identity: the
@@ -307,9 +313,16 @@ class StateTable:
             if len(self._tokens) >= 4096:  # (tokens are never reused: see _next_token)
                 self._tokens.clear()
                 self._kept.clear()
+                self.moves.clear()
             hit = self._tokens[key] = (_next_token(), bound_lights)
         token = hit[0]
-        self._token_memo = (serial, token)
+        move = self.move
+        if move is not None and move[1] == serial:
+            if len(self.moves) >= 4096:
+                self.moves.clear()
+            self.moves[move[0]] = token
+        self.move = None
+        self.token_serial, self.token = serial, token
         return token
 
     def intern_kept(self, ctx) -> int:
