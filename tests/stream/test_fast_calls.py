@@ -130,3 +130,33 @@ def test_replayed_objects_and_kept_records_give_identical_planes(seed, monkeypat
         for i, (a, b) in enumerate(zip(replayed, other, strict=True)):
             for k in a:
                 assert np.array_equal(a[k], b[k]), (i, k)
+
+
+@pytest.mark.parametrize("seed", list(FRAME_SEEDS)[:3])
+def test_kept_clear_states_give_identical_planes(seed, monkeypatch):
+    """The frames clear between passes (czclear, sclear): registers' kept clear
+    state on and off draw the same planes."""
+    from vgxsim.state import registers
+
+    kept = _frames(seed, True, True, monkeypatch)
+    monkeypatch.setattr(registers, "KEEP_CLEAR_STATE", False)
+    fresh = _frames(seed, True, True, monkeypatch)
+    for i, (a, b) in enumerate(zip(kept, fresh, strict=True)):
+        for k in a:
+            assert np.array_equal(a[k], b[k]), (i, k)
+
+
+def test_the_kept_clear_state_follows_the_registers():
+    from dataclasses import replace
+
+    from vgxsim.state.registers import RasterRegisters
+
+    regs = RasterRegisters(8, 8, False)
+    first = regs.clear_state()
+    assert regs.clear_state() is first  # the same snapshot: the same clear state
+    regs.set(wmpack=0x00FF00FF, zwritemask=0)
+    second = regs.clear_state()
+    assert second is not first
+    assert second == replace(regs.snapshot(), zbuffer=False, stencil=False, blend_sf=1,
+                             blend_df=0, logicop=3, afunc=7, cull=0, texture=0)
+    assert second.wmpack == 0x00FF00FF and second.zwritemask == 0 and not second.zbuffer
