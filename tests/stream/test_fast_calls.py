@@ -160,3 +160,5 @@ def test_the_kept_clear_state_follows_the_registers():
     assert second == replace(regs.snapshot(), zbuffer=False, stencil=False, blend_sf=1,
                              blend_df=0, logicop=3, afunc=7, cull=0, texture=0)
     assert second.wmpack == 0x00FF00FF and second.zwritemask == 0 and not second.zbuffer
+    regs.set(wmpack=0xFFFFFFFF, zwritemask=0xFFFFFFFF)
+    assert regs.clear_state() is first  # the first registers again: their clear state

@@ -74,8 +74,8 @@ class RasterRegisters:
         self._memo: dict[tuple, RasterState] = {}
         # stencil(3G)'s fast path: the StencilRegister of each valid argument tuple.
         self.stencil_memo: dict[tuple, StencilRegister] = {}
-        # clear_state()'s last (snapshot, clear state).
-        self._clear_kept: tuple | None = None
+        # clear_state()'s clear states by snapshot: id -> (snapshot, clear state).
+        self._clear_kept: dict[int, tuple] = {}
 
     def set(self, **values) -> None:
         """Store register values and mark the snapshot dirty."""
@@ -143,15 +143,17 @@ class RasterRegisters:
         """Snapshot for clears: only the rectangle, masks and draw buffers matter.
 
         With :data:`KEEP_CLEAR_STATE` the one made for a snapshot is handed back
-        while the snapshot stays the same (``replace`` of a RasterState costs about
-        10 us, and the 1991 frame clears three times between the same registers)."""
+        for that snapshot again (``replace`` of a RasterState costs about 10 us, and
+        the 1991 frame clears three times, under the same registers every frame)."""
         snap = self.snapshot()
-        kept = self._clear_kept
+        kept = self._clear_kept.get(id(snap))
         if kept is not None and kept[0] is snap and KEEP_CLEAR_STATE:
             return kept[1]
         cs = replace(snap, zbuffer=False, stencil=False, blend_sf=1, blend_df=0,
                      logicop=3, afunc=7, cull=0, texture=0)
-        self._clear_kept = (snap, cs)
+        if len(self._clear_kept) >= 64:
+            self._clear_kept.clear()
+        self._clear_kept[id(snap)] = (snap, cs)
         return cs
 
 
