@@ -898,10 +898,10 @@ class ReplayBlock:
 
     Attributes
     ----------
-    ctx, entry_snap, mvp, depth, token, concave, vertex_serial, rgb : object
+    ctx, entry_snap, mvp, depth, token, concave, vertex_serial, rgb, lmcolor_mode :
         The key: the window, its raster snapshot before the call, composite matrix,
         depth range, lighting token (StateTable.lighting_token), concave flag,
-        vertex serial and colour mode.
+        vertex serial, colour mode and lmcolor mode.
     colour, normal, last_sent, lmcolor_set : object
         The key's current attributes (identity).
     first_reg, first_snap : object
@@ -918,7 +918,7 @@ class ReplayBlock:
     """
 
     __slots__ = ("ctx", "entry_snap", "mvp", "depth", "token", "concave", "vertex_serial",
-                 "rgb", "colour", "normal", "last_sent", "lmcolor_set", "first_reg",
+                 "rgb", "lmcolor_mode", "colour", "normal", "last_sent", "lmcolor_set", "first_reg",
                  "first_snap", "ops", "fl", "states", "generation", "exit_reg", "exit_snap",
                  "exit_raster", "exit_colour", "exit_normal", "exit_sent", "exit_lms")
 
@@ -937,7 +937,8 @@ def _replay(ctx, dobj: DisplayObject) -> bool:
             and ctx.depth_range is blk.depth and ctx.concave is blk.concave
             and ctx.vertex_serial == blk.vertex_serial and ctx.colour is blk.colour
             and ctx.normal is blk.normal and ctx.last_sent is blk.last_sent
-            and ctx.lmcolor_set is blk.lmcolor_set and ctx.config.rgb is blk.rgb):
+            and ctx.lmcolor_set is blk.lmcolor_set and ctx.config.rgb is blk.rgb
+            and ctx.lmcolor_mode == blk.lmcolor_mode):
         return False
     st = ctx.stream
     if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
@@ -985,6 +986,7 @@ def _trace(ctx, dobj: DisplayObject) -> None:
     blk.mvp = ctx.matrices.mvp()
     blk.depth, blk.concave = ctx.depth_range, ctx.concave
     blk.vertex_serial, blk.rgb = ctx.vertex_serial, ctx.config.rgb
+    blk.lmcolor_mode = ctx.lmcolor_mode  # (in the token too; a program may set it alone)
     blk.token = table.lighting_token(ctx)
     blk.colour, blk.normal = ctx.colour, ctx.normal
     blk.last_sent, blk.lmcolor_set = ctx.last_sent, ctx.lmcolor_set

@@ -339,7 +339,7 @@ class StateTable:
         if rs.texture != 0:
             return self.intern(ctx)
         key = (id(rs), id(mvp), ctx.raster.viewport, ctx.depth_range,
-               self.lighting_token(ctx), ctx.concave, ctx.config.rgb,
+               self.lighting_token(ctx), ctx.lmcolor_mode, ctx.concave, ctx.config.rgb,
                id(ctx.bound["lights"]), ctx.vertex_serial)
         rec = self._kept.get(key)
         if rec is not None and rec.raster is rs and rec.mvp is mvp:
