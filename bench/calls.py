@@ -18,6 +18,8 @@ Reports, medians over rounds, all measured in this one run:
   transform, lighting, clipping and set-up), with the front end's fast paths
   (FUSED_FRONT, BATCH_LIGHTING) on and off, alternating frame by frame;
 * the makeobj replay of the frame's DrawObjects (one callobj per pass);
+* the front end of both with gl._core.REPLAY_OBJECTS (callobj's prepared replays,
+  draw-state records kept across flushes) off and on, alternating;
 * the same frame drawn by a PyOpenGL immediate-mode transliteration of the example
   (bench/heidmann_gl.py) on llvmpipe with LP_NUM_THREADS=1 and 2.
 
@@ -201,8 +203,68 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
             gl.callobj(1)
 
     out["callobj (1 quad)"] = _median_ns(loop_callobj, n // 4, rounds, after=ctx.flush)
+
+    # The 1991 volume cache's object: per shadow face a stencil() call and a quad.
+    gl.makeobj(2)
+    for i in range(N_FACES):
+        gl.stencil(1, 0, GL.SF_ALWAYS, 0xFF, GL.ST_KEEP, GL.ST_KEEP,
+                   GL.ST_INCR if i & 1 else GL.ST_DECR)
+        gl.bgnpolygon()
+        for q in quad:
+            gl.v3f(q)
+        gl.endpolygon()
+    gl.closeobj()
+    gl.zwritemask(0)
+    gl.wmpack(0)
+
+    def loop_faces():
+        for _ in range(n // N_FACES):
+            gl.callobj(2)
+
+    def after_faces():
+        ctx.flush()  # (the next round starts with a new state table, as a frame does)
+
+    out[FACES_ROW] = _median_ns(loop_faces, n // N_FACES, rounds, after=after_faces) / N_FACES
+    # The same two rows with gl._core.REPLAY_OBJECTS off and on, round by round.
+    for name, loop, per, calls, after in (
+            ("callobj 1 quad", loop_callobj, 1, n // 4, ctx.flush),
+            (f"callobj {N_FACES} faces, per face", loop_faces, N_FACES, n // N_FACES,
+             after_faces)):
+        ab = _switch_ab_ns(loop, calls, rounds, after)
+        out[f"{name}, REPLAY_OBJECTS off"] = ab[False] / per
+        out[f"{name}, REPLAY_OBJECTS on"] = ab[True] / per
+    gl.zwritemask(0xFFFFFFFF)
+    gl.wmpack(0xFFFFFFFF)
     gl.winclose(gid)
     return out
+
+
+#: Shadow faces in the callobj row of the volume cache's object (stencil + quad each).
+N_FACES = 16
+FACES_ROW = f"callobj ({N_FACES} stencil+quad faces, per face)"
+
+
+def _switch_ab_ns(loop, n: int, rounds: int, after=None) -> dict[bool, float]:
+    """Median ns per call of ``loop()`` with gl._core.REPLAY_OBJECTS off and on,
+    alternating round by round (A/B in one process: both see the same load)."""
+    from vgxsim.gl import _core
+
+    ts: dict[bool, list] = {False: [], True: []}
+    try:
+        for r in range(rounds + 1):
+            for on in (False, True):
+                _core.REPLAY_OBJECTS = on
+                clock = CLOCK["ns"]
+                t = clock()
+                loop()
+                dt = clock() - t
+                if after is not None:
+                    after()
+                if r:
+                    ts[on].append(dt)
+    finally:
+        _core.REPLAY_OBJECTS = True
+    return {on: float(np.median(v)) / n for on, v in ts.items()}
 
 
 _NO = object()
@@ -328,6 +390,7 @@ def python_floors(rounds: int) -> dict[str, tuple[float, float]]:
         "stencil+bgnpolygon+4 v3f+endpolygon (per call)": both(
             loop_face(e3), loop_face(s3_seq), per=7),
         "callobj (1 quad)": both(loop_callobj, calls=n // 4),
+        FACES_ROW: both(loop_callobj, per=N_FACES, calls=n // 4),
     }
 
 
@@ -378,6 +441,25 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
             return (float(np.median(tot_a)) * 1e3, float(np.median(ras_a)) * 1e3,
                     float(np.median(tot_a - ras_a)) * 1e3)
 
+        def replay_ab(run, prefix: str) -> dict[str, float]:
+            """Front end with gl._core.REPLAY_OBJECTS off and on, frame by frame."""
+            from vgxsim.gl import _core
+
+            fe: dict = {False: [], True: []}
+            try:
+                for _ in range(rounds):
+                    for on in (False, True):
+                        _core.REPLAY_OBJECTS = on
+                        run()  # (the first frame after a switch settles its caches)
+                        spent[0] = 0.0
+                        t = clock()
+                        run()
+                        fe[on].append(clock() - t - spent[0])
+            finally:
+                _core.REPLAY_OBJECTS = True
+            return {f"{prefix}front_end_ms_replay_{'on' if on else 'off'}":
+                    float(np.median(v)) * 1e3 for on, v in fe.items()}
+
         def fast_paths(on: bool) -> None:
             geometry.FUSED_FRONT = on
             draw.BATCH_LIGHTING = on
@@ -414,8 +496,10 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
         try:
             (out["objects_frame_ms"], out["objects_raster_ms"],
              out["objects_front_end_ms"]) = measure(frame)
+            out.update(replay_ab(frame, "objects_"))
         finally:
             prog.DrawObjects = draw_objects
+        out.update(replay_ab(frame, ""))
         out["polygons_per_frame"] = _count_polygons(prog)
     finally:
         batch_mod.CommandBatch.flush = real_flush
@@ -548,6 +632,20 @@ def mesa_calls(rounds: int) -> dict[str, float] | None:
         for _ in range(n // 4):
             G.glCallList(lst)
 
+    faces = G.glGenLists(1)
+    G.glNewList(faces, G.GL_COMPILE)
+    for i in range(N_FACES):
+        G.glStencilOp(G.GL_KEEP, G.GL_KEEP, G.GL_INCR if i & 1 else G.GL_DECR)
+        G.glBegin(G.GL_POLYGON)
+        for q in quad:
+            G.glVertex3fv(q)
+        G.glEnd()
+    G.glEndList()
+
+    def loop_faces():
+        for _ in range(n // N_FACES):
+            G.glCallList(faces)
+
     out["v3f(x, y, z)"] = _median_ns(loop_vertex_seq, n, rounds)
     out["v3f((x, y, z))"] = _median_ns(loop_vertex, n, rounds)
     out["n3f(x, y, z)"] = _median_ns(loop_normal, n, rounds)
@@ -575,8 +673,10 @@ def mesa_calls(rounds: int) -> dict[str, float] | None:
     out["stencil+bgnpolygon+4 v3f+endpolygon (per call)"] = _median_ns(
         loop_face, n, rounds) / 7
     out["callobj (1 quad)"] = _median_ns(loop_calllist, n // 4, rounds)
+    out[FACES_ROW] = _median_ns(loop_faces, n // N_FACES, rounds) / N_FACES
     G.glFinish()
     G.glDeleteLists(lst, 1)
+    G.glDeleteLists(faces, 1)
     return out
 
 

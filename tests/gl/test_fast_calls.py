@@ -54,6 +54,13 @@ def ctx(gl_window):
     ("callobj", (-1,), {}, gl.GLValueError, r"callobj\(-1\): an Object is a 31-bit"),
     ("callobj", (2**31,), {}, gl.GLValueError, r"callobj\(2147483648\)"),
     ("callobj", (1.0,), {}, gl.GLTypeError, r"callobj\(1.0\): obj must be an int"),
+    ("blendfunction", (1, 15), {}, gl.GLValueError, r"blendfunction\(1, 15\): dfactr 15 "
+                                                    r"is not a valid token \(BF_\*\)"),
+    ("blendfunction", (9, 0), {}, gl.GLValueError, r"sfactr 9 \(BF_CA..BF_MAX\) is a later"),
+    ("blendfunction", (1, 8), {}, gl.GLValueError, r"BF_MIN_SA_MDA is a source factor only"),
+    ("blendfunction", (1.0, 0), {}, gl.GLTypeError, r"sfactr must be an int, not float"),
+    ("blendfunction", (1,), {}, gl.GLTypeError, r"blendfunction\(1\): expected 2 arguments"),
+    ("blendfunction", (1, 0), {"x": 1}, gl.GLTypeError, r"blendfunction\(1, 0, x=1\)"),
     ("bgnpolygon", (), {"x": 1}, gl.GLTypeError, r"bgnpolygon\(x=1\)"),
     ("endpolygon", (), {}, gl.GLUsageError, r"endpolygon\(\): without bgnpolygon"),
 ])

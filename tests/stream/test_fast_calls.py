@@ -1,7 +1,9 @@
 """The common calls' valid paths (gl/_core.py FAST_CALLS) draw what their general
 paths draw: the same random IRIS GL call sequences, immediately and through nested
 display objects, give identical colour, z and stencil planes with the switch on and
-off."""
+off; and so do multi-frame programs whose objects callobj replays from prepared
+blocks and whose draw-state records are kept across flushes, with the edits that
+must make them stale between frames (tests/stream/frames_of_objects.py)."""
 
 from __future__ import annotations
 
@@ -11,6 +13,7 @@ import pytest
 from vgxsim.gl import _core
 from vgxsim.gl._core import session
 
+from .frames_of_objects import FRAME_SEEDS, render_frames
 from .random_calls import SEEDS, render, sequence
 
 
@@ -78,3 +81,84 @@ def test_the_switch_decides_which_path_runs(monkeypatch):
     finally:
         gl.winclose(gid)
     assert session.imm is None
+
+
+def _frames(seed: int, fast: bool, replay: bool, monkeypatch) -> list:
+    monkeypatch.setattr(_core, "FAST_CALLS", fast)
+    monkeypatch.setattr(_core, "REPLAY_OBJECTS", replay)
+    session.refresh()
+    try:
+        return render_frames(seed)
+    finally:
+        monkeypatch.setattr(_core, "FAST_CALLS", True)
+        monkeypatch.setattr(_core, "REPLAY_OBJECTS", True)
+        session.refresh()
+        session.reset()
+
+
+@pytest.mark.parametrize("seed", list(FRAME_SEEDS))
+def test_replayed_objects_and_kept_records_give_identical_planes(seed, monkeypatch):
+    """REPLAY_OBJECTS on, off (the FAST_CALLS paths alone) and every fast path off
+    draw the same planes, frame by frame."""
+    from vgxsim.gl import _objects
+    from vgxsim.pipeline.records import StateTable
+
+    used = {"replays": 0, "kept": 0}
+    replay, adopt = _objects._replay, StateTable.adopt
+
+    def counting_replay(ctx, dobj):
+        done = replay(ctx, dobj)
+        used["replays"] += done
+        return done
+
+    def counting_adopt(self, rec):
+        used["kept"] += 1
+        return adopt(self, rec)
+
+    monkeypatch.setattr(_objects, "_replay", counting_replay)
+    monkeypatch.setattr(StateTable, "adopt", counting_adopt)
+    replayed = _frames(seed, True, True, monkeypatch)
+    # Both kept paths ran (else the comparison below would test nothing of them).
+    assert used["replays"] > 0 and used["kept"] > 0
+    used["replays"] = used["kept"] = 0
+    fast = _frames(seed, True, False, monkeypatch)
+    assert used["replays"] == 0 and used["kept"] == 0  # the switch turns them off
+    slow = _frames(seed, False, True, monkeypatch)
+    assert used["replays"] == 0 and used["kept"] == 0  # (and so does FAST_CALLS)
+    assert any(f["stencil"].any() and f["rgba"][..., :3].any() for f in replayed)
+    for other in (fast, slow):
+        for i, (a, b) in enumerate(zip(replayed, other, strict=True)):
+            for k in a:
+                assert np.array_equal(a[k], b[k]), (i, k)
+
+
+@pytest.mark.parametrize("seed", list(FRAME_SEEDS)[:3])
+def test_kept_clear_states_give_identical_planes(seed, monkeypatch):
+    """The frames clear between passes (czclear, sclear): registers' kept clear
+    state on and off draw the same planes."""
+    from vgxsim.state import registers
+
+    kept = _frames(seed, True, True, monkeypatch)
+    monkeypatch.setattr(registers, "KEEP_CLEAR_STATE", False)
+    fresh = _frames(seed, True, True, monkeypatch)
+    for i, (a, b) in enumerate(zip(kept, fresh, strict=True)):
+        for k in a:
+            assert np.array_equal(a[k], b[k]), (i, k)
+
+
+def test_the_kept_clear_state_follows_the_registers():
+    from dataclasses import replace
+
+    from vgxsim.state.registers import RasterRegisters
+
+    regs = RasterRegisters(8, 8, False)
+    first = regs.clear_state()
+    assert regs.clear_state() is first  # the same snapshot: the same clear state
+    regs.set(wmpack=0x00FF00FF, zwritemask=0)
+    second = regs.clear_state()
+    assert second is not first
+    assert second == replace(regs.snapshot(), zbuffer=False, stencil=False, blend_sf=1,
+                             blend_df=0, logicop=3, afunc=7, cull=0, texture=0)
+    assert second.wmpack == 0x00FF00FF and second.zwritemask == 0 and not second.zbuffer
+    regs.set(wmpack=0xFFFFFFFF, zwritemask=0xFFFFFFFF)
+    assert regs.clear_state() is first  # the first registers again: their clear state

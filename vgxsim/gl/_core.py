@@ -82,14 +82,25 @@ class Window:
 
 
 #: Fast path switch (issue 6: the common calls under 1 us).  True: the common calls
-#: (v3f, n3f, c3f, cpack, bgn*/end*, stencil, lmbind, zwritemask, wmpack, the matrix
-#: stack, callobj) find the window through :attr:`_Session.imm` and take a valid path
-#: of a few plain-value checks; anything else -- recording, a keyword, a wrong count
+#: (v3f, n3f, c3f, cpack, bgn*/end*, stencil, lmbind, zwritemask, wmpack,
+#: blendfunction, the matrix stack, callobj) find the window through
+#: :attr:`_Session.imm` and take a valid path of a few plain-value checks; anything
+#: else -- recording, a keyword, a wrong count
 #: or type, an out-of-range value -- goes to the call's general path, which validates
 #: and raises as it always did.  False: every call takes its general path (the planes
 #: are the same either way, tests/gl/test_fast_calls.py).  Call
 #: ``session.refresh()`` after changing it.
 FAST_CALLS = True
+
+#: Replay switch (issue 6: callobj and the frame's front end), in effect where
+#: :data:`FAST_CALLS` is.  True: callobj replays an object of stencil calls and small
+#: closed chunks from a prepared block while the caller's state is the block's key
+#: (gl/_objects.py ReplayBlock), splices a one-chunk object inline, and draw-state
+#: records and lmbind(LIGHTn)'s eye-space light entries are kept from one flush to
+#: the next (StateTable.intern_kept).  False: those calls take the FAST_CALLS paths
+#: they took before (the planes are the same either way, tests/stream/
+#: test_fast_calls.py).  Read at each call: no refresh needed.
+REPLAY_OBJECTS = True
 
 
 class _Windows(dict):

@@ -44,6 +44,7 @@ from vgxsim.pipeline.decode import drain
 from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, T, V
 from vgxsim.stream.recorder import MAX_STREAM_OPS
 
+from . import _core
 from ._core import (
     _NO,
     GLTypeError,
@@ -144,6 +145,12 @@ def _restate(ctx, st) -> None:
     """Record the window's draw state (a STATE op) if it changed since the last one."""
     if same_state(ctx, st):
         return
+    _restate_changed(ctx, st)
+
+
+def _restate_changed(ctx, st) -> None:
+    """:func:`_restate` where the caller has found the state changed (``same_state``
+    false)."""
     regs = ctx.raster
     snap = regs._snapshot
     idx = -1
@@ -162,9 +169,14 @@ def _restate(ctx, st) -> None:
     else:
         st.state_memo.clear()  # other parts changed: the records found so far differ
     if idx < 0:
-        idx = ctx.states.intern(ctx)
+        if session.imm is ctx and _core.REPLAY_OBJECTS:  # (immediate mode)
+            # A record made before for this state, kept across flushes (a frame
+            # draws the states of the last one again).
+            idx = ctx.states.intern_kept(ctx)
+        else:
+            idx = ctx.states.intern(ctx)
         snap = regs._snapshot
-        if session.imm is ctx:  # (FAST_CALLS on, immediate mode)
+        if session.imm is ctx:
             if len(st.state_memo) >= 256:
                 st.state_memo.clear()
             st.state_memo[id(snap)] = (snap, idx, ctx.states.records[idx])

@@ -20,9 +20,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from vgxsim import GL
-from vgxsim.lighting import LightingError
+from vgxsim.lighting import LightingError, light_to_eye
 from vgxsim.tokens import Token
 
+from . import _core
 from ._core import (
     _NO,
     GLTypeError,
@@ -153,23 +154,79 @@ def lmbind(target=_NO, index=_NO, /, *more, **kw) -> None:
     front material (lmdef(3G)).
     """
     ctx = session.imm
-    # Valid path: a material or lighting-model token (int or GL token) and a plain int
-    # index in range that is defined (or 0); lights (which transform by the modelview)
-    # and everything else take the general path.
+    # Valid path: a material, lighting-model or light token (int or GL token) and a
+    # plain int index in range that is defined (or 0); everything else takes the
+    # general path.
     if (ctx is not None and not kw and not more and type(target) in _PLAIN_INTS
             and type(index) is int and 0 <= index <= _SHORT_MAX):
         key = _BOUND_KEY.get(target)
         if key is not None and (not index or ctx.lighting.is_defined(_TARGET_DEF[target][0],
                                                                        index)):
-            ctx.lighting_serial += 1  # the stream records the draw state anew
+            tbl = ctx.states
+            if tbl.token_serial == ctx.lighting_serial and _core.REPLAY_OBJECTS:
+                # The lighting token before this call is known: the one after it is
+                # a function of it and (target, index), found once
+                # (StateTable.lighting_token names bindings by value).
+                code = (tbl.token << 20) | (_MOVE_OF[target] << 16) | index
+                ctx.lighting_serial += 1
+                moved = tbl.moves.get(code)
+                if moved is not None:
+                    tbl.token_serial, tbl.token = ctx.lighting_serial, moved
+                else:
+                    tbl.move = (code, ctx.lighting_serial)
+            else:
+                ctx.lighting_serial += 1  # the stream records the draw state anew
             ctx.bound[key] = index
             if key == "material":
                 ctx.lmcolor_set = False
             return
+        slot = _LIGHTS.get(target)
+        if slot is not None and _core.REPLAY_OBJECTS:
+            if not index:  # Context.bind_light(slot, 0)
+                ctx.lighting_serial += 1
+                ctx.bound["lights"].pop(slot, None)
+                return
+            light = ctx.lighting.light(index)
+            if light is not None:
+                _bind_light(ctx, slot, index, light)
+                return
     _general_lmbind(*given((target, index), more), **kw)
 
 
+def _bind_light(ctx, slot: int, index: int, light) -> None:
+    """Context.bind_light for a defined light, with the eye-space entry of the same
+    definition under the same modelview handed back (the position is "transformed by
+    the current ModelView matrix" at lmbind, lmbind(3G), so it is a function of the
+    two, which are replaced, never mutated): rebinding a light each frame then binds
+    the same entry, computes no product, and lets the state table name the binding
+    by value (StateTable.lighting_token)."""
+    mv = ctx.matrices.modelview_matrix()
+    memo = _light_memo(ctx)
+    k = slot << 16 | index  # (index <= _SHORT_MAX)
+    hit = memo.get(k)
+    if hit is not None and hit[0] is light and hit[1] is mv:
+        pair = hit[2]
+    else:
+        pair = (index, light_to_eye(light, mv))
+        if len(memo) >= 256:
+            memo.clear()
+        memo[k] = (light, mv, pair)
+    ctx.lighting_serial += 1
+    ctx.bound["lights"][slot] = pair
+
+
+def _light_memo(ctx) -> dict:
+    """The window's memo of lmbind(LIGHTn): slot << 16 | index -> (light, modelview,
+    bound entry)."""
+    memo = getattr(ctx, "gl_light_memo", None)
+    if memo is None:
+        memo = ctx.gl_light_memo = {}
+    return memo
+
+
 _MATERIAL = int(GL.MATERIAL)
+#: Each non-light target's number in a lighting-token move code (StateTable.moves).
+_MOVE_OF = {int(GL.MATERIAL): 0, int(GL.BACKMATERIAL): 1, int(GL.LMODEL): 2}
 #: Which ``Context.bound`` entry each non-light lmbind target sets.
 _BOUND_KEY = {int(GL.MATERIAL): "material", int(GL.BACKMATERIAL): "backmaterial",
               int(GL.LMODEL): "lmodel"}

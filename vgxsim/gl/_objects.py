@@ -28,6 +28,15 @@ bgn*/end* nesting inside the object); a call that fails raises at once and leave
 object as it was.  What depends on the caller -- a vertex of a primitive the caller
 opened, a colour call in a colour-map window -- is checked at the callobj.
 
+**Prepared replays** (``_core.REPLAY_OBJECTS``).  An object of stencil() calls and
+small closed chunks (the 1991 program's cached shadow faces) is replayed from a
+:class:`ReplayBlock`: what the first callobj appended, appended again while the
+caller's state is the same (identities of the raster snapshot, matrices,
+attributes; the lighting by value, StateTable.lighting_token), its STATE ops
+re-indexed once per flush.  A block belongs to one DisplayObject, which is never
+edited in place, so makeobj, editobj/closeobj and delobj of its number leave no
+stale block; an object that nests others never has one.
+
 **Nesting.**  callobj inside objects runs on an explicit stack, not Python's:
 at most :data:`MAX_NESTING` objects deep (a GLUsageError past it).
 
@@ -53,10 +62,11 @@ import numpy as np
 
 from vgxsim import GL
 from vgxsim.pipeline.decode import drain
-from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, SWAP, N, T, V
+from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, STATE, SWAP, N, T, V
 from vgxsim.stream.opcodes import C as C_OP
 from vgxsim.stream.recorder import MAX_STREAM_OPS, SPLICE_MIN_FLOATS, Chunk
 
+from . import _core
 from ._core import (
     _NO,
     GLTypeError,
@@ -72,7 +82,8 @@ from ._core import (
     record_or_refuse,
     session,
 )
-from ._draw import CLOSER, OPENER, _restate, sync
+from ._draw import CLOSER, OPENER, _restate_changed, sync
+from ._raster import stencil
 
 __all__ = ["genobj", "makeobj", "closeobj", "callobj", "delobj", "isobj", "getopenobj",
            "editobj", "maketag", "newtag", "gentag", "istag", "deltag", "objinsert",
@@ -98,6 +109,18 @@ class DisplayObject:
         self.chunks: list | None = None
         if all(isinstance(seg, (Chunk, Tag)) for seg in self.segments):
             self.chunks = [seg for seg in self.segments if isinstance(seg, Chunk)]
+        # callobj's prepared replays (ReplayBlock) when the object is replayable, by
+        # lighting token (an object drawn once per material or light keeps one each);
+        # a new object (makeobj, closeobj after editobj) starts without any and delobj
+        # drops them with the object, so no block outlives the segments it was made
+        # from.
+        self.blocks: dict[int, ReplayBlock] = {}
+        self.replayable = _replayable(self.segments)
+        # The one chunk of a chunk-only object that callobj's inlined splice takes
+        # (small, closed, nothing rare), else None.
+        self.single: Chunk | None = None
+        if self.chunks is not None and len(self.chunks) == 1 and _replayable(self.chunks):
+            self.single = self.chunks[0]
 
     @property
     def program(self) -> list:
@@ -506,10 +529,57 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
             if obj > MAX_OBJECT:
                 _object_arg("callobj", (obj,))  # raises
             return
+        ch = dobj.single
+        if ch is not None and ctx.prim is None and _core.REPLAY_OBJECTS:
+            # splice() of the object's one chunk, inlined (a quad's callobj is mostly
+            # the calls around the copy): what its checks decide -- no primitive need
+            # be open, none is left open, nothing rare -- was decided at closeobj.
+            colour_op = C_OP
+            if ch.last_colour is not None:
+                if not ctx.config.rgb:
+                    return splice(ctx, ch)  # raises: RGB colour calls in colour map mode
+                bound = ctx.bound
+                if bound["material"] != 0 and bound["lmodel"] != 0:
+                    colour_op = _colour_op(ctx)
+            plan = ch.plans.get(colour_op)  # (a closed object's chunks never grow)
+            if plan is None:
+                plan = plan_of(ch, colour_op)
+            st = ctx.stream
+            if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
+                drain(ctx)
+            snap = ctx.raster._snapshot
+            if not (snap is st.raster and snap is not None
+                    and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
+                    and ctx.lighting_serial == st.lighting_serial
+                    and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
+                _restate_changed(ctx, st)
+            colour = ctx.colour
+            if (colour is not st.colour or ctx.normal is not st.normal
+                    or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+                sync(ctx, st)
+            st.ops.extend(plan.ops)
+            st.fl.extend(plan.fl)
+            if plan.plain:  # sets the colour and last_sent only (a colour, no normal)
+                ctx.colour = st.colour = plan.colour
+                ctx.last_sent = st.sent = plan.last_sent
+                return
+            if plan.colour is not None:
+                ctx.colour = st.colour = plan.colour
+                if plan.lmcolor_set:
+                    ctx.lmcolor_set = st.lmcolor_set = True
+            if plan.normal is not None:
+                ctx.normal = st.normal = plan.normal
+            if plan.last_sent is not None:
+                ctx.last_sent = st.sent = plan.last_sent
+            return
         chunks = dobj.chunks
         if chunks is not None:  # only vertex-stream calls: nothing nests
             for ch in chunks:
                 splice(ctx, ch)
+            return
+        if dobj.replayable and ctx.prim is None and _core.REPLAY_OBJECTS:
+            if not _replay(ctx, dobj):
+                _trace(ctx, dobj)
             return
     _general_callobj(*given((obj,), more), **kw)
 
@@ -557,6 +627,11 @@ def _general_callobj(*args, **kwargs) -> None:
             if len(chain) >= MAX_NESTING:
                 raise GLUsageError(f"{describe('callobj', args)}: objects nested more than "
                                    f"{MAX_NESTING} deep (vgxsim's limit, MAX_NESTING)")
+            if (inner_obj.replayable and session.imm is ctx and ctx.prim is None
+                    and _core.REPLAY_OBJECTS):
+                if not _replay(ctx, inner_obj):
+                    _trace(ctx, inner_obj)
+                continue
             chain.append(inner)
             stack.append((inner_obj.segments, 0))
             continue
@@ -671,10 +746,12 @@ class SplicePlan:
         unchanged); ``lmcolor_set`` True when a colour call reached the material.
     rare : bool
         The chunk sets a texture coordinate or the graphics position, or draws lines.
+    plain : bool
+        The chunk leaves a new colour and ``last_sent`` only (no normal, no material).
     """
 
     __slots__ = ("ops", "fl", "big", "colour", "normal", "last_sent", "lmcolor_set",
-                 "rare", "n_ops")
+                 "rare", "n_ops", "plain")
 
 
 def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
@@ -699,6 +776,8 @@ def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
     else:
         plan.last_sent = None
     plan.rare = ch.texcoord is not None or ch.gpos is not None or ch.has_lines
+    plan.plain = (plan.colour is not None and not plan.lmcolor_set and plan.normal is None
+                  and plan.last_sent is not None)
     ch.plans[colour_op] = plan
     return plan
 
@@ -706,6 +785,13 @@ def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
 def splice(ctx, ch: Chunk) -> None:
     """Append a chunk to the window's stream and leave the caller's current
     attributes as the chunk's calls would have."""
+    plan, colour_op = _prologue(ctx, ch)
+    _append(ctx, ch, plan, colour_op)
+
+
+def _prologue(ctx, ch: Chunk) -> tuple:
+    """splice()'s checks and the STATE and SYNC ops before the chunk's own:
+    (plan, colour op)."""
     if ch.needs is not None:
         _check_needs(ctx, ch)
     colour_op = C_OP
@@ -734,10 +820,17 @@ def splice(ctx, ch: Chunk) -> None:
                     and ctx.lighting_serial == st.lighting_serial
                     and ctx.concave is st.concave
                     and ctx.vertex_serial == st.vertex_serial):
-                _restate(ctx, st)
+                _restate_changed(ctx, st)
     if (ctx.colour is not st.colour or ctx.normal is not st.normal
             or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
         sync(ctx, st)  # the chunk's vertices start from the caller's attributes
+    return plan, colour_op
+
+
+def _append(ctx, ch: Chunk, plan: SplicePlan, colour_op: int) -> None:
+    """splice() after its prologue: the chunk's ops, and the caller's attributes as
+    the chunk leaves them."""
+    st = ctx.stream
     opened = ch.open
     if opened is not None:
         base_ops, base_fl = len(st), st.n_floats()
@@ -770,6 +863,170 @@ def splice(ctx, ch: Chunk) -> None:
             ctx.gpos = ch.gpos
         if ch.has_lines:
             drain(ctx)
+
+
+# -- prepared replays ----------------------------------------------------------------------
+def _replayable(segments: list) -> bool:
+    """Whether callobj may replay an object from a :class:`ReplayBlock`: it holds only
+    chunks that open and close their primitives, need none open (callobj replays
+    blocks only outside bgn*/end*, where "closed" holds), and are copied into
+    the stream's lists (not spliced as arrays), tags, and stencil() calls -- whose
+    whole effect is the stencil register and the raster snapshot, both functions of
+    the registers before and the arguments (the 1991 shadow faces: stencil, then a
+    quad, per edge).  Nothing in it nests, so editing another object cannot change
+    what it draws."""
+    chunks = 0
+    for seg in segments:
+        if isinstance(seg, Chunk):
+            if (seg.needs not in (None, "closed") or seg.open is not None or not seg.touched_prim
+                    or seg.texcoord is not None or seg.gpos is not None or seg.has_lines
+                    or len(seg.fl) >= SPLICE_MIN_FLOATS):
+                return False
+            chunks += 1
+        elif not isinstance(seg, Tag) and seg[0] is not stencil:
+            return False
+    return chunks > 0
+
+
+class ReplayBlock:
+    """What one callobj of a replayable object appended and left behind, kept to be
+    appended again while the caller's state is the same (:func:`_replay`).
+
+    The first chunk's draw state and attributes are recorded live at each replay
+    (what they depend on -- the stream's last STATE op and attributes -- is the
+    caller's); everything after that is a function of the key attributes:
+
+    Attributes
+    ----------
+    ctx, entry_snap, mvp, depth, token, concave, vertex_serial, rgb, lmcolor_mode :
+        The key: the window, its raster snapshot before the call, composite matrix,
+        depth range, lighting token (StateTable.lighting_token), concave flag,
+        vertex serial, colour mode and lmcolor mode.
+    colour, normal, last_sent, lmcolor_set : object
+        The key's current attributes (identity).
+    first_reg, first_snap : object
+        The stencil register and raster snapshot at the first chunk.
+    ops, fl : list
+        What the object appends after the first chunk's STATE and SYNC ops.
+    states : list of (DrawState, list of int)
+        Each record of the STATE ops in ``ops``, in order of first use, and where
+        ``ops`` holds its index; ``generation`` is the state table generation the
+        indices in ``ops`` were found in.
+    exit_reg, exit_snap, exit_raster, exit_colour, exit_normal, exit_sent, exit_lms :
+        The stencil register, raster snapshot, the stream's last recorded snapshot
+        and the current attributes after the call.
+    """
+
+    __slots__ = ("ctx", "entry_snap", "mvp", "depth", "token", "concave", "vertex_serial",
+                 "rgb", "lmcolor_mode", "colour", "normal", "last_sent", "lmcolor_set", "first_reg",
+                 "first_snap", "ops", "fl", "states", "generation", "exit_reg", "exit_snap",
+                 "exit_raster", "exit_colour", "exit_normal", "exit_sent", "exit_lms")
+
+
+def _replay(ctx, dobj: DisplayObject) -> bool:
+    """callobj of a replayable object from a block, if the caller's state is the
+    block's key (True); else False, and nothing is done."""
+    blk = dobj.blocks.get(ctx.states.lighting_token(ctx))
+    if blk is None:
+        return False
+    regs = ctx.raster
+    snap = regs._snapshot
+    if snap is None:
+        snap = regs.snapshot()  # (a cache of the registers: filling it changes nothing)
+    if not (blk.ctx is ctx and blk.entry_snap is snap and ctx.matrices._mvp is blk.mvp
+            and ctx.depth_range is blk.depth and ctx.concave is blk.concave
+            and ctx.vertex_serial == blk.vertex_serial and ctx.colour is blk.colour
+            and ctx.normal is blk.normal and ctx.last_sent is blk.last_sent
+            and ctx.lmcolor_set is blk.lmcolor_set and ctx.config.rgb is blk.rgb
+            and ctx.lmcolor_mode == blk.lmcolor_mode):
+        return False
+    st = ctx.stream
+    if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
+        return False  # (the general replay drains first)
+    regs.stencil = blk.first_reg
+    regs._snapshot = first = blk.first_snap
+    # splice()'s prologue of the first chunk: record the draw state and attributes
+    # the stream does not hold yet.
+    if not (first is st.raster and blk.mvp is st.mvp and blk.depth is st.depth
+            and ctx.lighting_serial == st.lighting_serial and blk.concave is st.concave
+            and blk.vertex_serial == st.vertex_serial):
+        _restate_changed(ctx, st)
+    if (blk.colour is not st.colour or blk.normal is not st.normal
+            or blk.last_sent is not st.sent or blk.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)
+    table = ctx.states
+    ops = blk.ops
+    if blk.generation != table.generation:  # a flush emptied the table: index anew
+        adopt = table.adopt
+        for rec, slots in blk.states:
+            i = adopt(rec)
+            for pos in slots:
+                ops[pos] = i
+        blk.generation = table.generation
+    st.ops.extend(ops)
+    st.fl.extend(blk.fl)
+    regs.stencil = blk.exit_reg
+    regs._snapshot = blk.exit_snap
+    st.raster = blk.exit_raster
+    ctx.colour = st.colour = blk.exit_colour
+    ctx.normal = st.normal = blk.exit_normal
+    ctx.last_sent = st.sent = blk.exit_sent
+    ctx.lmcolor_set = st.lmcolor_set = blk.exit_lms
+    return True
+
+
+def _trace(ctx, dobj: DisplayObject) -> None:
+    """callobj of a replayable object, segment by segment as the general replay does
+    it, keeping what it appends and leaves as the object's :class:`ReplayBlock`
+    (only when nothing flushed the stream meanwhile)."""
+    regs, st, table = ctx.raster, ctx.stream, ctx.states
+    blk = ReplayBlock()
+    blk.ctx = ctx
+    blk.entry_snap = regs.snapshot()
+    blk.mvp = ctx.matrices.mvp()
+    blk.depth, blk.concave = ctx.depth_range, ctx.concave
+    blk.vertex_serial, blk.rgb = ctx.vertex_serial, ctx.config.rgb
+    blk.lmcolor_mode = ctx.lmcolor_mode  # (in the token too; a program may set it alone)
+    blk.token = table.lighting_token(ctx)
+    blk.colour, blk.normal = ctx.colour, ctx.normal
+    blk.last_sent, blk.lmcolor_set = ctx.last_sent, ctx.lmcolor_set
+    generation, parts = table.generation, len(st.parts)
+    start = None
+    states = []
+    for seg in dobj.segments:
+        if isinstance(seg, Tag):
+            continue
+        if not isinstance(seg, Chunk):
+            seg[0](*seg[1])
+            continue
+        if start is None:
+            blk.first_reg, blk.first_snap = regs.stencil, regs.snapshot()
+        before = len(st.ops)
+        plan, colour_op = _prologue(ctx, seg)
+        if start is None:
+            start = (len(st.ops), len(st.fl))
+        elif len(st.ops) > before and st.ops[before] == STATE:
+            states.append((before + 1 - start[0], st.ops[before + 1]))  # STATE's index
+        _append(ctx, seg, plan, colour_op)
+    if (table.generation != generation or len(st.parts) != parts or start is None
+            or ctx.prim is not None):
+        return
+    records = table.records
+    slots: dict[int, tuple] = {}  # id(record) -> (record, its STATE ops' index slots)
+    for pos, idx in states:
+        rec = records[idx]
+        slots.setdefault(id(rec), (rec, []))[1].append(pos)
+    blk.states = list(slots.values())
+    if any(rec.raster.texture != 0 for rec, _slots in blk.states):
+        return  # (such records are made by StateTable.intern, not kept)
+    blk.ops, blk.fl = st.ops[start[0]:], st.fl[start[1]:]
+    blk.generation = generation
+    blk.exit_reg, blk.exit_snap, blk.exit_raster = regs.stencil, regs._snapshot, st.raster
+    blk.exit_colour, blk.exit_normal = ctx.colour, ctx.normal
+    blk.exit_sent, blk.exit_lms = ctx.last_sent, ctx.lmcolor_set
+    if len(dobj.blocks) >= 8:
+        dobj.blocks.clear()
+    dobj.blocks[blk.token] = blk
 
 
 @gl_function(record=False)

@@ -339,16 +339,10 @@ def _blend_factor(args: tuple, what: str, v, allowed: range) -> int:
     return iv
 
 
-@gl_function()
-def blendfunction(sfactr: int, dfactr: int) -> None:
-    """Blend factors (blendfunction(3G)); (BF_ONE, BF_ZERO) is no blending.
-
-    Values 2 and 3 are BF_DC/BF_MDC as a source factor and BF_SC/BF_MSC as a
-    destination factor; BF_MIN_SA_MDA is a source factor only.  Blending and logic
-    operations exclude each other: a blending function other than (BF_ONE, BF_ZERO)
-    resets logicop to LO_SRC (IGL records the manual saying so).
-    """
-    args = (sfactr, dfactr)
+def _general_blendfunction(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None or len(args) != 2:
+        return record_or_refuse(blendfunction, args, kwargs)
+    sfactr, dfactr = args
     ctx = current("blendfunction", args)
     sf = _blend_factor(args, "sfactr", sfactr, range(0, 9))
     df = _blend_factor(args, "dfactr", dfactr, range(0, 8))
@@ -356,6 +350,35 @@ def blendfunction(sfactr: int, dfactr: int) -> None:
         ctx.raster.set(blend=(sf, df), logicop=int(GL.LO_SRC))
     else:
         ctx.raster.set(blend=(sf, df))
+
+
+@gl_function(binds=(2, 2, ("int", "int")))
+def blendfunction(sfactr=_NO, dfactr=_NO, /, *more, **kw) -> None:
+    """blendfunction(sfactr, dfactr): blend factors (blendfunction(3G)); (BF_ONE,
+    BF_ZERO) is no blending.
+
+    Values 2 and 3 are BF_DC/BF_MDC as a source factor and BF_SC/BF_MSC as a
+    destination factor; BF_MIN_SA_MDA is a source factor only.  Blending and logic
+    operations exclude each other: a blending function other than (BF_ONE, BF_ZERO)
+    resets logicop to LO_SRC (IGL records the manual saying so).
+    """
+    ctx = session.imm
+    # Valid path: two plain ints (or GL tokens) that are VGX factors; anything else
+    # takes the general path, which raises naming the argument.
+    if (ctx is not None and not kw and not more and type(sfactr) in _INTS
+            and type(dfactr) in _INTS and sfactr in _SFACTORS and dfactr in _DFACTORS):
+        regs = ctx.raster
+        regs.blend = (int(sfactr), int(dfactr))
+        if sfactr != _BF_ONE or dfactr != _BF_ZERO:
+            regs.logicop = _LO_SRC
+        regs._snapshot = None
+        return
+    _general_blendfunction(*given((sfactr, dfactr), more), **kw)
+
+
+_SFACTORS = frozenset(range(0, 9))  # (BF_CA .. BF_MAX, 9..14, are not VGX factors)
+_DFACTORS = frozenset(range(0, 8))  # (BF_MIN_SA_MDA, 8, is a source factor only)
+_BF_ONE, _BF_ZERO, _LO_SRC = int(GL.BF_ONE), int(GL.BF_ZERO), int(GL.LO_SRC)
 
 
 @gl_function()

@@ -212,6 +212,28 @@ class StateTable:
         self._last: DrawState | None = None
         self._index: dict[tuple, int] = {}
         self._lighting_memo: tuple | None = None
+        # Bumped by every clear(): an index found under one generation names the same
+        # record until the next clear (callers of adopt() keep indices by generation).
+        self.generation = 0
+        # adopt()'s index of each kept record in this generation: id -> (index,
+        # record), and whether a kept record draws as the one before it:
+        # (id(last), id(record)) -> (last, record, 2: same_state, 1: same_geometry,
+        # 0: neither).  (The records in the values keep their ids from being reused.)
+        self._where: dict[int, tuple] = {}
+        self._pairs: dict[tuple, tuple] = {}
+        # intern_kept()'s records by value, kept across clear(): key -> DrawState.
+        self._kept: dict[tuple, DrawState] = {}
+        # lighting_token()'s memo: (lighting serial, token), and the token of each
+        # lighting binding seen (binding key -> (token, the bound lights), which keeps
+        # the entries whose ids the key holds alive, so no id is reused meanwhile).
+        self.token_serial: int | None = None
+        self.token = 0
+        # Moves between tokens that one binding call makes (move_code() -> token),
+        # filled in by lighting_token after the call that armed ``move``: (code,
+        # serial after the call), set by the gl layer's lmbind.
+        self.moves: dict[int, int] = {}
+        self.move: tuple | None = None
+        self._tokens: dict[tuple, tuple] = {}
 
     def intern(self, ctx) -> int:
         """Index of the window's current draw state (one record per distinct value:
@@ -266,9 +288,115 @@ class StateTable:
         self._last = rec
         return len(self.records) - 1
 
+    def lighting_token(self, ctx) -> int:
+        """A number that names the window's lighting binding by value, the same for
+        the same binding however often it is rebound: the lmdef generation (every
+        lmdef makes new definitions), the bound material, back material, lighting
+        model and lmcolor mode and the bound lights' (index, eye-space entry) pairs
+        (by identity: gl lmbind hands the same pair back for the same light and
+        modelview).  ``lighting_serial``, which every lighting call bumps, only
+        says when to look again (and a binding call that knows where it moves the
+        token, :attr:`moves`, sets it at once: gl lmbind)."""
+        serial = ctx.lighting_serial
+        if self.token_serial == serial:
+            return self.token
+        bound = ctx.bound
+        lights = bound["lights"]
+        # (The slots in binding order and their (index, entry) pairs by identity: the
+        # same mapping gives the same key as long as it is bound in the same order.)
+        bound_lights = tuple(lights.values())
+        key = (id(ctx.lighting), ctx.lighting.generation, bound["material"],
+               bound.get("backmaterial", 0), bound["lmodel"], ctx.lmcolor_mode,
+               tuple(lights), tuple(map(id, bound_lights)))
+        hit = self._tokens.get(key)
+        if hit is None:
+            if len(self._tokens) >= 4096:  # (tokens are never reused: see _next_token)
+                self._tokens.clear()
+                self._kept.clear()
+                self.moves.clear()
+            hit = self._tokens[key] = (_next_token(), bound_lights)
+        token = hit[0]
+        move = self.move
+        if move is not None and move[1] == serial:
+            if len(self.moves) >= 4096:
+                self.moves.clear()
+            self.moves[move[0]] = token
+        self.move = None
+        self.token_serial, self.token = serial, token
+        return token
+
+    def intern_kept(self, ctx) -> int:
+        """:meth:`intern` for a program that draws the same states frame after frame:
+        the record made once for a state is kept across :meth:`clear` and put back in
+        the table (:meth:`adopt`) instead of being made again.  The key is
+        :meth:`intern`'s with :meth:`lighting_token` for the lighting serial (which
+        changes at every lmbind, even of what was bound before); the user planes,
+        fog, depth cue and line flags are named by the vertex serial, which only
+        grows.  A state with a texture bound takes :meth:`intern` (its texgen eye
+        space reads the texture's definition, which no key here names)."""
+        rs = ctx.raster.snapshot()
+        mvp = ctx.matrices.mvp()
+        if rs.texture != 0:
+            return self.intern(ctx)
+        key = (id(rs), id(mvp), ctx.raster.viewport, ctx.depth_range,
+               self.lighting_token(ctx), ctx.lmcolor_mode, ctx.concave, ctx.config.rgb,
+               id(ctx.bound["lights"]), ctx.vertex_serial)
+        rec = self._kept.get(key)
+        if rec is not None and rec.raster is rs and rec.mvp is mvp:
+            return self.adopt(rec)
+        idx = self.intern(ctx)
+        rec = self.records[idx]
+        if rec.raster is rs and rec.mvp is mvp:
+            self._kept[key] = rec
+            self._where[id(rec)] = (idx, rec)
+        return idx
+
+    def adopt(self, rec: DrawState) -> int:
+        """Index of a record made for the window's current state (by
+        :meth:`intern_kept`, possibly before a clear): the one it got first in this
+        generation, else it is appended as :meth:`_new` appends a new record (or
+        given the last one's index when that draws alike)."""
+        hit = self._where.get(id(rec))
+        if hit is not None and hit[1] is rec:
+            return hit[0]
+        records = self.records
+        last = self._last
+        if last is None:
+            joins = 0
+        else:
+            pair = self._pairs.get((id(last), id(rec)))
+            if pair is not None and pair[0] is last and pair[1] is rec:
+                joins = pair[2]
+            else:  # same_state and same_geometry, once per pair of kept records
+                joins = 2 if same_state(last, rec) else 1 if same_geometry(last, rec) else 0
+                if len(self._pairs) >= 4096:
+                    self._pairs.clear()
+                self._pairs[(id(last), id(rec))] = (last, rec, joins)
+        if joins == 2:
+            i = len(records) - 1
+        else:
+            self.geometry.append(self.geometry[-1] if joins else len(records))
+            records.append(rec)
+            self._last = rec
+            i = len(records) - 1
+        self._where[id(rec)] = (i, rec)
+        return i
+
     def clear(self) -> None:
         self.records.clear()
         self.geometry.clear()
         self._index.clear()
+        self._where.clear()
         self._last = None
         self._lighting_memo = None
+        self.generation += 1
+
+
+_token_count = [0]
+
+
+def _next_token() -> int:
+    """A lighting token never handed out before (process-wide, so a token kept in one
+    table's key cannot name another binding after that table forgets its tokens)."""
+    _token_count[0] += 1
+    return _token_count[0]
