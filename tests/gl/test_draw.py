@@ -226,8 +226,9 @@ def test_varray_and_vnarray(ctx):
 def test_vertex_record_colour_normal_and_lit(ctx, monkeypatch):
     seen = []
     # What the stream decoder hands the geometry pass for a single primitive.
-    from vgxsim.pipeline import decode
+    from vgxsim.pipeline import decode, draw
 
+    monkeypatch.setattr(draw, "FLUSH_FRONT", False)  # the group path, which this spies on
     monkeypatch.setattr(decode, "draw_arrays",
                         lambda _ctx, _state, _lms, *a, **k: seen.append((a[:5], k)))
     gl.bgnpolygon()

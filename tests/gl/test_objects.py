@@ -92,8 +92,9 @@ def test_runs_become_few_draws(ctx, monkeypatch):
     calls = []
     # What the stream decoder hands the geometry passes: triangle groups are
     # deferred as one list, lines and points drawn one primitive each.
-    from vgxsim.pipeline import decode
+    from vgxsim.pipeline import decode, draw
 
+    monkeypatch.setattr(draw, "FLUSH_FRONT", False)  # the group path, which this spies on
     real_draw, real_defer = decode.draw_arrays, decode.defer_triangles
     monkeypatch.setattr(decode, "draw_arrays", lambda c, s, lms, kind, *a, **k: (
         calls.append(kind), real_draw(c, s, lms, kind, *a, **k)))

@@ -60,6 +60,7 @@ def _heidmann(monkeypatch, batched: bool):
     from vgxsim.gl._core import current
 
     monkeypatch.setattr(draw, "BATCH_LIGHTING", batched)
+    monkeypatch.setattr(draw, "FLUSH_FRONT", False)  # the group path, which this counts
     calls = [0]
     real = draw.shade_object_runs
     monkeypatch.setattr(draw, "shade_object_runs",

@@ -40,10 +40,8 @@ BATCH_LIGHTING = True
 #: transform pass over all their vertices, one clip and projection pass, one set-up
 #: call per run of rows between clears) instead of group by group.  False: the
 #: group-by-group path for every row (tests/pipeline/test_flush_front.py compares).
-#: Off by default for now: on, it bypasses the paths that BATCH_LIGHTING and
-#: FUSED_FRONT select for the 1991 frame, which their own tests count on;
-#: bench/calls.py's fast_paths switches it on with them.
-FLUSH_FRONT = False
+#: On by default: tests that count or spy on the group path's calls pin it off.
+FLUSH_FRONT = True
 
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
     "polygon", "tmesh", "qstrip", "line", "closedline", "point")
