@@ -130,9 +130,8 @@ def bin_primitives(py0, py1, nprims, band_shift, nbands):
 
 
 @jit
-def gather_band_records(items, place, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim,
-                        t_col, t_state, g_kind, g_ref, g_edge, g_box, g_z, g_zlim, g_col,
-                        g_state):
+def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim, t_col,
+                        t_state, g_kind, g_ref, g_edge, g_box, g_z, g_zlim, g_col, g_state):
     """Copy the set-up records of ``items[lo:hi]`` into slots ``lo .. hi - 1``.
 
     After binning, a band's primitives are a sparse, scattered subset of the batch;
@@ -142,60 +141,29 @@ def gather_band_records(items, place, lo, hi, p_kind, p_ref, t_edge, t_box, t_z,
     kind in ``g_kind``, a triangle's record at its own slot (``g_ref[i] = i``), the
     other kinds' references unchanged.  Disjoint ``[lo, hi)`` ranges may be filled
     by different threads.
-
-    ``place`` (kernels/bins.py bin_tiles; empty: entry i to slot i) sends entry i
-    instead to the slots ``place[i, j, 0]`` (while >= 0), each with its box clipped
-    to the tile of column ``place[i, j, 1]`` (unless NO_TILE) and tile row
-    ``place[i, j, 2]``.  Reading the entries in band order and scattering them
-    keeps the reads of the set-up records sequential.
     """
-    placed = place.shape[0] > 0
     for i in range(lo, hi):
         p = items[i]
-        if not placed:
-            _copy_record(p, i, -1, 0, p_kind, p_ref, t_edge, t_box, t_z, t_zlim, t_col,
-                         t_state, g_kind, g_ref, g_edge, g_box, g_z, g_zlim, g_col, g_state)
+        k = p_kind[p]
+        g_kind[i] = k
+        if k != KIND_TRIANGLE:
+            g_ref[i] = p_ref[p]
             continue
-        for j in range(place.shape[1]):
-            slot = place[i, j, 0]
-            if slot < 0:
-                break
-            _copy_record(p, slot, place[i, j, 1], place[i, j, 2], p_kind, p_ref, t_edge,
-                         t_box, t_z, t_zlim, t_col, t_state, g_kind, g_ref, g_edge, g_box,
-                         g_z, g_zlim, g_col, g_state)
-
-
-@inline_ir
-def _copy_record(p, i, col, row, p_kind, p_ref, t_edge, t_box, t_z, t_zlim, t_col, t_state,
-                 g_kind, g_ref, g_edge, g_box, g_z, g_zlim, g_col, g_state):
-    """Primitive ``p`` into slot ``i`` (for :func:`gather_band_records`), a
-    triangle's box clipped to the tile of column ``col`` and row ``row`` when
-    ``col >= 0``."""
-    k = p_kind[p]
-    g_kind[i] = k
-    if k != KIND_TRIANGLE:
-        g_ref[i] = p_ref[p]
-        return
-    t = p_ref[p]
-    g_ref[i] = i
-    for e in range(3):
-        for c in range(3):
-            g_edge[i, e, c] = t_edge[t, e, c]
-    for c in range(4):
-        g_box[i, c] = t_box[t, c]
-    if col >= 0:
-        g_box[i, 0] = max(g_box[i, 0], col << TILE_SHIFT)
-        g_box[i, 1] = min(g_box[i, 1], (col << TILE_SHIFT) + TILE_W - 1)
-        g_box[i, 2] = max(g_box[i, 2], row << TILE_H_SHIFT)
-        g_box[i, 3] = min(g_box[i, 3], (row << TILE_H_SHIFT) + TILE_H - 1)
-    for c in range(5):
-        g_z[i, c] = t_z[t, c]
-    g_zlim[i, 0] = t_zlim[t, 0]
-    g_zlim[i, 1] = t_zlim[t, 1]
-    for ch in range(4):
-        for c in range(3):
-            g_col[i, ch, c] = t_col[t, ch, c]
-    g_state[i] = t_state[t]
+        t = p_ref[p]
+        g_ref[i] = i
+        for e in range(3):
+            for c in range(3):
+                g_edge[i, e, c] = t_edge[t, e, c]
+        for c in range(4):
+            g_box[i, c] = t_box[t, c]
+        for c in range(5):
+            g_z[i, c] = t_z[t, c]
+        g_zlim[i, 0] = t_zlim[t, 0]
+        g_zlim[i, 1] = t_zlim[t, 1]
+        for ch in range(4):
+            for c in range(3):
+                g_col[i, ch, c] = t_col[t, ch, c]
+        g_state[i] = t_state[t]
 
 
 @inline_ir

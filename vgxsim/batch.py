@@ -13,7 +13,6 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim import coldstart, threads
-from vgxsim.kernels.bins import PLACES, bin_tiles
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
 from vgxsim.kernels.render import bin_primitives, gather_band_records, render_bands
@@ -135,12 +134,6 @@ class CommandBatch:
         their set-up records into band order so that each band reads its own
         front to back (kernels/render.py gather_band_records); on by default, a
         switch that changes nothing drawn.
-    tile_bins : bool
-        With ``band_records``: inside each band, runs of small triangles are
-        copied tile by tile (kernels/bins.py bin_tiles, primitive order kept within
-        a tile, a triangle crossing a tile edge clipped to each tile), so one
-        tile's planes stay in cache while its triangles run; on by default, a
-        switch that changes nothing drawn.
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -155,7 +148,6 @@ class CommandBatch:
     step_spans = True
     vector_pack = True
     band_records = True
-    tile_bins = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -212,14 +204,11 @@ class CommandBatch:
         """The set-up record arrays, in the order the set-up kernels write them."""
         return (self.t_edge, self.t_box, self.t_z, self.t_zlim, self.t_col, self.t_state)
 
-    def _band_order(self, items: np.ndarray, place: np.ndarray, total: int,
-                    nthreads: int) -> tuple:
+    def _band_order(self, items: np.ndarray, nthreads: int) -> tuple:
         """The binned primitives with their triangle records copied into band order
         (``band_records``): items ``0 .. n - 1``, the kinds and references, and the
-        record arrays, for :func:`render_bands` in place of the batch's own.
-        ``place``: each entry's slots and tiles (kernels/bins.py), or empty
-        (entry i to slot i); ``total`` slots are filled."""
-        n = total
+        record arrays, for :func:`render_bands` in place of the batch's own."""
+        n = items.shape[0]
         if self.g_kind.shape[0] < n:
             cap = max(n, 2 * self.g_kind.shape[0], 64)
             self.g_iota = np.arange(cap, dtype=np.int64)
@@ -229,8 +218,8 @@ class CommandBatch:
                                    for a in self._records())
         prims = (self.g_kind, self.g_ref)
         # Chunks of items are disjoint slots: they copy on the worker threads.
-        _run_chunks(nthreads > 1, nthreads, _gather_range(items, place, self, prims),
-                    _cuts(items.shape[0], nthreads))
+        _run_chunks(nthreads > 1, nthreads, _gather_range(items, self, prims),
+                    _cuts(n, nthreads))
         return self.g_iota[:n], prims, self.g_records
 
     def _reset(self) -> None:
@@ -613,12 +602,7 @@ class CommandBatch:
         textured = bool(states[:, S_TEXTURE].any())
         if (self.band_records and not textured and nbands > 1 and self.ntris >= GATHER_MIN
                 and items.shape[0] <= GATHER_MAX):
-            place = _NO_PLACE
-            if self.tile_bins:
-                starts, place = bin_tiles(starts, items, self.p_kind, self.p_ref,
-                                          self.t_box, fb.width, height, shift)
-            items, prims, records = self._band_order(items, place, int(starts[-1]),
-                                                     nthreads)
+            items, prims, records = self._band_order(items, nthreads)
         else:
             prims, records = (self.p_kind, self.p_ref), self._records()
         args = (
@@ -653,13 +637,10 @@ class CommandBatch:
 _ADD_TRIANGLES = CommandBatch.add_triangles
 
 
-_NO_PLACE = np.zeros((0, PLACES, 3), np.int64)  # gather_band_records: entry i to slot i
-
-
-def _gather_range(items, place, batch: CommandBatch, prims):
+def _gather_range(items, batch: CommandBatch, prims):
     """``f(lo, hi)`` copying the records of ``items[lo:hi]`` (for _run_chunks)."""
     args = (batch.p_kind, batch.p_ref, *batch._records(), *prims, *batch.g_records)
-    return lambda lo, hi: gather_band_records(items, place, lo, hi, *args)
+    return lambda lo, hi: gather_band_records(items, lo, hi, *args)
 
 
 def _texture_table(states: np.ndarray):
