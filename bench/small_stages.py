@@ -1,7 +1,7 @@
 """Where the time of a 10-pixel triangle goes, stage by stage (issue 7, item 3).
 
     python bench/small_stages.py [--count N] [--area A] [--threads T] [--rounds R]
-                                 [--tile-order PIXELS]
+                                 [--tile-order PIXELS] [--ab SWITCH]
 
 Draws bench/scenes.py small_triangles (Context.draw_arrays: one call of N triangles,
 then a flush) and reports, per stage function, the median over ``rounds`` of the
@@ -11,6 +11,9 @@ as_homogeneous / transform_points / clip_triangles / project_snap (front end),
 setup_triangles_states (kernels/setup.py), bin_primitives and gather_band_records
 (binning), render_bands (the band kernel).  Process CPU time, not wall time: the
 machine this runs on is usually shared, and CPU time is the steadier figure.
+``--ab SWITCH`` runs each round twice, with the CommandBatch switch SWITCH on and
+then off (alternating, so load drifts hit both alike), and reports both, with the
+median wall time of a round beside the CPU time.
 """
 
 from __future__ import annotations
@@ -30,33 +33,50 @@ sys.path.insert(0, os.path.dirname(__file__))
 import scenes  # noqa: E402
 
 from vgxsim import threads  # noqa: E402
+from vgxsim.batch import CommandBatch  # noqa: E402
 
 
 def stage_times(count: int, area: float, nthreads: int, rounds: int,
-                tile_order: int = 0) -> dict:
-    """Median CPU ns per triangle of each function of the run (and ``total``).
+                tile_order: int = 0, switch: str | None = None) -> dict:
+    """Median CPU ns per triangle of each function of the run (and ``total``,
+    ``wall``), per setting of ``switch`` (a CommandBatch class attribute: on, off,
+    alternating round by round; None: the defaults only).
 
     Returns
     -------
     dict
-        ``{function name: ns per triangle}``, plus ``"total"`` (the whole run).
+        ``{setting: {function name: ns per triangle}}``, plus ``"total"`` (the whole
+        run's CPU time) and ``"wall"``; setting is True/False, or None.
     """
     threads.set_threads(nthreads)
     numba.set_num_threads(min(nthreads, numba.config.NUMBA_NUM_THREADS))
     run, n = scenes.small_triangles(count=count, area=area, tile_order=tile_order)
-    run()  # compile and warm up
-    samples: dict[str, list[float]] = {}
-    for _ in range(rounds):
-        prof = cProfile.Profile()
-        c = time.process_time()
-        prof.enable()
-        run()
-        prof.disable()
-        samples.setdefault("total", []).append(time.process_time() - c)
-        for (_file, _line, name), row in pstats.Stats(prof).stats.items():
-            samples.setdefault(name, []).append(row[2])  # own time (tottime)
-    return {k: float(np.median(v)) * 1e9 / n for k, v in samples.items()
-            if len(v) == rounds}
+    settings = [None] if switch is None else [True, False]
+    keep = None if switch is None else getattr(CommandBatch, switch)
+    samples: dict = {s: {} for s in settings}
+    try:
+        for r in range(rounds + 1):
+            for setting in settings:
+                if switch is not None:
+                    setattr(CommandBatch, switch, setting)
+                if r == 0:
+                    run()  # compile and warm up
+                    continue
+                prof = cProfile.Profile(time.process_time)
+                c, w = time.process_time(), time.perf_counter()
+                prof.enable()
+                run()
+                prof.disable()
+                got = samples[setting]
+                got.setdefault("wall", []).append(time.perf_counter() - w)
+                got.setdefault("total", []).append(time.process_time() - c)
+                for (_file, _line, name), row in pstats.Stats(prof).stats.items():
+                    got.setdefault(name, []).append(row[2])  # own time (tottime)
+    finally:
+        if switch is not None:
+            setattr(CommandBatch, switch, keep)
+    return {s: {k: float(np.median(v)) * 1e9 / n for k, v in got.items()
+                if len(v) == rounds} for s, got in samples.items()}
 
 
 def main() -> None:
@@ -67,13 +87,20 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--tile-order", type=int, default=0,
                     help="submit the triangles sorted by tiles of this many pixels")
+    ap.add_argument("--ab", metavar="SWITCH", default=None,
+                    help="a CommandBatch switch to run on and off, alternating")
     args = ap.parse_args()
-    ns = stage_times(args.count, args.area, args.threads, args.rounds, args.tile_order)
-    total = ns.pop("total")
-    print(f"{args.count} triangles of {args.area} px, {args.threads} thread(s), "
-          f"median of {args.rounds}: {total:.0f} ns/tri CPU = {1e3 / total:.2f} M tri/s")
-    for name, v in sorted(ns.items(), key=lambda kv: -kv[1])[:14]:
-        print(f"  {name:32s} {v:7.0f} ns/tri  {100 * v / total:5.1f} %")
+    runs = stage_times(args.count, args.area, args.threads, args.rounds, args.tile_order,
+                       args.ab)
+    for setting, ns in runs.items():
+        total = ns.pop("total")
+        wall = ns.pop("wall")
+        label = "" if setting is None else f", {args.ab}={'on' if setting else 'off'}"
+        print(f"{args.count} triangles of {args.area} px, {args.threads} thread(s){label}, "
+              f"median of {args.rounds}: {total:.0f} ns/tri CPU = {1e3 / total:.2f} M tri/s"
+              f" (wall {wall:.0f} ns/tri = {1e3 / wall:.2f} M tri/s)")
+        for name, v in sorted(ns.items(), key=lambda kv: -kv[1])[:14]:
+            print(f"  {name:32s} {v:7.0f} ns/tri  {100 * v / total:5.1f} %")
 
 
 if __name__ == "__main__":

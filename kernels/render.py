@@ -78,6 +78,8 @@ from .fragment import (
 )
 from .options import callee, inline_ir, jit
 from .raster import covers, row_span
+from .small import NARROW as SMALL_NARROW
+from .small import small_mode, small_triangle
 from .spans import edge_next, edge_start_at, span_from
 from .texture import texture_fragment
 from .tiles import (
@@ -170,7 +172,7 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tight_tiles, step_spans, vector_pack, tb, runs, spans, work, tex,
+    tight_tiles, step_spans, vector_pack, small_path, tb, runs, spans, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -181,6 +183,19 @@ def _triangle_rows(
     skip = skip_tiles and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
     step = step_spans and not edge_mode
     classify = (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
+    if (small_path and not classify and xhi - xlo < SMALL_NARROW and not general_only
+            and not edge_mode and small_mode(dv)):
+        # A small triangle: one pass over its box, no span set-up (kernels/small.py).
+        tested = small_triangle(t, xlo, xhi, ylo, yhi, t_edge, t_z, t_zlim, t_col, st, dv,
+                                tab, front, back, zbuf, sten)
+        work[WORK_FRAGMENTS] += tested
+        if dv[D_STENCIL] != 0 and dv[D_MODE] != MODE_COLOUR:
+            work[WORK_STENCIL_WRITES] += tested
+        if dv[D_ZWRITE] != 0 and tested > 0:
+            note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, (front.shape[1] + TILE_W - 1)
+                           >> TILE_SHIFT, t_zlim[t, 0], t_zlim[t, 1], dv[D_ZMASK],
+                           st[S_ZFUNC])
+        return
     # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
     s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
     s1, q1, r1, d1, bq1, br1 = edge_start_at(t_edge, t, 1, ylo)
@@ -605,7 +620,7 @@ def render_bands(
     states, derived, tables,
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
-    work, tex,
+    small_path, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -652,6 +667,10 @@ def render_bands(
         Row spans stepped exactly (:mod:`.spans`); colour and z converted through
         int32 in the lit-pass and z+stencil loops (switches, on by default; same
         planes).
+    small_path : bool
+        Triangles at most ``kernels.small.NARROW`` pixels wide whose tiles are not
+        classified run in one pass over their box (:mod:`.small`; a switch, on by
+        default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -692,7 +711,8 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, tight_tiles, step_spans, vector_pack, tb, runs, spans, bw,
+                    cover_blocks, tight_tiles, step_spans, vector_pack, small_path, tb, runs,
+                    spans, bw,
                     tex,
                 )
             elif kind == KIND_FRAGMENTS:

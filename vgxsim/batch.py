@@ -128,6 +128,13 @@ class CommandBatch:
         through int32 after a float clamp, which AVX2 vectorizes, instead of
         through int64 (kernels/fragment.py pack_rgba_i32, round_z_i32); on by
         default, the same values either way (a class attribute like the above).
+    small_path : bool
+        Triangles at most eight pixels wide (whose tiles are not classified) run in
+        one pass over their bounding box with the edge values stepped per pixel
+        and scalar fragment loops (kernels/small.py), instead of through stepped
+        spans and the span loops, whose per-row set-up costs more than a small
+        triangle's row of pixels; on by default, the same planes either way (a
+        class attribute like the above).
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy
@@ -147,6 +154,7 @@ class CommandBatch:
     tight_tiles = True
     step_spans = True
     vector_pack = True
+    small_path = True
     band_records = True
 
     def __init__(self, framebuffer: Framebuffer):
@@ -611,7 +619,7 @@ class CommandBatch:
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
-            self.vector_pack, work,
+            self.vector_pack, self.small_path, work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
