@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from vgxsim import GL
-from vgxsim.gl._core import GLValueError
+from vgxsim.gl._core import GLValueError, window_of
 from vgxsim.gl._texture import tevbind, tevdef, texbind, texdef2d, texgen
 
 W = H = 8
@@ -118,7 +118,7 @@ def test_packed_words_are_read_in_the_c_layout(win):
     # nc = 4: one word per texel, bytes A B G R most significant first (cpack order).
     words = [0xFF0000FF, 0xFF00FF00, 0xFFFF0000, 0xFFFFFFFF]
     texdef2d(2, 4, 2, 2, words, 1, (GL.TX_NULL,))
-    assert np.array_equal(ctx.texture_unit.textures[2].texels, IMAGE)
+    assert np.array_equal(window_of(ctx).texture.textures[2].texels, IMAGE)
 
 
 def test_t2f_coordinates_are_carried_per_vertex(win):

@@ -228,12 +228,6 @@ def _general_cpack(*args, **kwargs) -> None:
     _set_rgba(ctx, _cpack_rgba(args))
 
 
-#: cpack's colours by packed word: one RGBA tuple per distinct word (interned, so a
-#: repeated cpack leaves the current colour the same object and the command stream
-#: sends no new SYNC for it); bounded, emptied when full.
-_PACKED: dict[int, tuple] = {}
-
-
 @gl_function(binds=(1, 1, ("int",)))
 def cpack(abgr=_NO, /, *more, **kw) -> None:
     """cpack(abgr): set the current colour from one packed word 0xAABBGGRR (cpack(3G)).
@@ -244,11 +238,12 @@ def cpack(abgr=_NO, /, *more, **kw) -> None:
     ctx = session.imm
     if ctx is None or kw or more or type(abgr) is not int or not ctx.config.rgb:
         return _general_cpack(*given((abgr,), more), **kw)
-    rgba = _PACKED.get(abgr)
+    packed = session.packed  # (interned colours, see _Session.reset)
+    rgba = packed.get(abgr)
     if rgba is None:
-        if len(_PACKED) >= 4096:
-            _PACKED.clear()
-        rgba = _PACKED[abgr] = _cpack_rgba((abgr,))
+        if len(packed) >= 4096:
+            packed.clear()
+        rgba = packed[abgr] = _cpack_rgba((abgr,))
     bound = ctx.bound
     if bound["material"] != 0 and bound["lmodel"] != 0:  # Context.lighting_active
         _set_rgba(ctx, rgba)  # lmcolor(3G) decides

@@ -23,6 +23,8 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
+from vgxsim import GL
+
 
 class GLError(Exception):
     """Base class of every error the IRIS GL layer raises."""
@@ -71,7 +73,10 @@ class Window:
     wintitle, icontitle, winposition/winmove, winconstraints): its gid, titles, the
     screen position of its lower-left corner, the constraints it was opened under,
     and the screen last handed to its frame sink (``"fresh"``: the planes as
-    allocated; None: nothing yet, or a double-buffered window)."""
+    allocated; None: nothing yet, or a double-buffered window); and the window state
+    only gl calls read: the drawmode(3G) token, the rectzoom(3G) factors and the
+    texture(3G)/tevdef(3G) definitions and bindings (gl/_texture.py TextureUnit,
+    made on first use)."""
 
     gid: int = 0
     title: str = ""
@@ -79,6 +84,9 @@ class Window:
     origin: tuple[int, int] = (0, 0)
     constraints: dict = field(default_factory=dict)
     shown: object = None
+    drawmode: int = int(GL.NORMALDRAW)
+    rectzoom: tuple[float, float] = (1.0, 1.0)
+    texture: object = None
 
 
 #: Fast path switch (issue 6: the common calls under 1 us).  True: the common calls
@@ -218,6 +226,10 @@ class _Session:
         self.open_object: int | None = None  # makeobj in progress
         self.recording = None
         self.topics: dict[str, object] = {}  # per-topic state, see topic_state()
+        # cpack's colours by packed word (gl/_color.py cpack): one RGBA tuple per
+        # distinct word, so a repeated cpack leaves the current colour the same object
+        # and the stream sends no new SYNC; bounded, emptied when full.
+        self.packed: dict[int, tuple] = {}
         # The Window record of each Context (window_of()); weak, so a Context installed
         # without winopen (tests, library users) takes its record with it.
         self.window_records: WeakKeyDictionary = WeakKeyDictionary()

@@ -38,6 +38,7 @@ from ._core import (
     current,
     describe,
     gl_function,
+    window_of,
 )
 
 __all__ = ["drawmode", "overlay", "underlay", "pupmode", "endpupmode", "pupcolor", "zdraw"]
@@ -55,7 +56,7 @@ def select(name: str, args: tuple, mode: int) -> None:
         raise GLUsageError(f"{describe(name, args)}: a primitive is open (call its end* "
                            "first); the draw mode cannot change inside bgn*/end*")
     layers.select(ctx, FRAMEBUFFER_OF[mode])
-    ctx.drawmode = mode
+    window_of(ctx).drawmode = mode
 
 
 @gl_function(record=False)

@@ -201,7 +201,7 @@ def _bind_light(ctx, slot: int, index: int, light) -> None:
     the same entry, computes no product, and lets the state table name the binding
     by value (StateTable.lighting_token)."""
     mv = ctx.matrices.modelview_matrix()
-    memo = _light_memo(ctx)
+    memo = ctx.stream.light_memo
     k = slot << 16 | index  # (index <= _SHORT_MAX)
     hit = memo.get(k)
     if hit is not None and hit[0] is light and hit[1] is mv:
@@ -213,15 +213,6 @@ def _bind_light(ctx, slot: int, index: int, light) -> None:
         memo[k] = (light, mv, pair)
     ctx.lighting_serial += 1
     ctx.bound["lights"][slot] = pair
-
-
-def _light_memo(ctx) -> dict:
-    """The window's memo of lmbind(LIGHTn): slot << 16 | index -> (light, modelview,
-    bound entry)."""
-    memo = getattr(ctx, "gl_light_memo", None)
-    if memo is None:
-        memo = ctx.gl_light_memo = {}
-    return memo
 
 
 _MATERIAL = int(GL.MATERIAL)

@@ -242,7 +242,7 @@ rpdr2, rpdr2i, rpdr2s = (_make_rpoly(2, s, False) for s in ("", "i", "s"))
 # -- move / draw -----------------------------------------------------------------------
 def _move_to(ctx, p) -> None:
     ctx.gpos = p
-    if getattr(ctx, "resetls", True):
+    if ctx.resetls:
         ctx.linestyle_pos = 0  # a move starts a new polyline: the pattern restarts
 
 

@@ -28,7 +28,7 @@ from vgxsim import GL
 from vgxsim.state.layers import MAX_BITS
 from vgxsim.state.planes import MAX_STENCIL_PLANES, ZMAX, ZMIN
 
-from ._core import as_int, check_token, current, gl_function
+from ._core import as_int, check_token, current, gl_function, window_of
 
 __all__ = [
     "getgdesc", "getgconfig", "gversion", "getplanes", "getdisplaymode", "getbuffer",
@@ -241,7 +241,7 @@ def getgconfig(buffer: int) -> int:
 
 
 def _drawmode(ctx) -> int:
-    return int(getattr(ctx, "drawmode", GL.NORMALDRAW))
+    return int(window_of(ctx).drawmode)
 
 
 @gl_function(record=False)
@@ -285,7 +285,7 @@ def getbuffer() -> int:
         bits = (GL.FRNTBUFFER if rs.frontbuffer else 0) | (GL.BCKBUFFER if rs.backbuffer else 0)
     else:
         bits = int(GL.FRNTBUFFER)
-    if getattr(ctx, "zdraw_batch", None) is not None:
+    if ctx.zdraw_batch is not None:
         bits |= GL.DRAWZBUFFER
     return int(bits)
 

@@ -535,7 +535,7 @@ def resetls(b: int) -> None:
 @gl_function(record=False)
 def getresetls() -> int:
     """1 when the line style restarts at each line (resetls(TRUE)), else 0."""
-    return int(getattr(current("getresetls"), "resetls", True))
+    return int(current("getresetls").resetls)
 
 
 @gl_function()
@@ -551,7 +551,7 @@ def lsbackup(b: int) -> None:
 @gl_function(record=False)
 def getlsbackup() -> int:
     """1 while lsbackup(TRUE) is in effect, else 0 (getlsbackup(3G))."""
-    return int(getattr(current("getlsbackup"), "lsbackup", False))
+    return int(current("getlsbackup").lsbackup)
 
 
 @gl_function(record=False)

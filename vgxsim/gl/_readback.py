@@ -284,7 +284,7 @@ def lrectwrite(x1: int, y1: int, x2: int, y2: int, data) -> None:
 
 def _write_rect(ctx, r, words: np.ndarray) -> None:
     """Write words (h, w) with lower-left corner (r[0], r[1]), zoomed by rectzoom."""
-    zx, zy = getattr(ctx, "rectzoom", (1.0, 1.0))
+    zx, zy = window_of(ctx).rectzoom
     h, w = words.shape
     if (zx, zy) != (1.0, 1.0):
         # Destination columns/rows inside the window only, then their source pixel.
@@ -536,7 +536,7 @@ def rectzoom(xfactor: float, yfactor: float) -> None:
     if not (0.0 < zx < 2049.0 and 0.0 < zy < 2049.0):
         raise GLValueError(f"{describe('rectzoom', args)}: the factors must be > 0 "
                            "(and at most 2048)")
-    current("rectzoom", args).rectzoom = (zx, zy)
+    window_of(current("rectzoom", args)).rectzoom = (zx, zy)
 
 
 def _cmode_only(ctx, name: str, args: tuple) -> None:
@@ -584,7 +584,7 @@ def _row_start(ctx, name: str, args: tuple, n: int):
     position is undefined (nothing is read or written, as readRGB)."""
     if n < 0:
         raise GLValueError(f"{describe(name, args)}: n must not be negative")
-    if not getattr(ctx, "cpos_valid", True):
+    if not ctx.cpos_valid:
         return None
     cpos = tuple(ctx.cpos)
     x, y = int(round(float(cpos[0]))), int(round(float(cpos[1])))

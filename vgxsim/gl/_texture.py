@@ -44,7 +44,16 @@ from vgxsim.state.textures import (
     mipmap_pyramid,
 )
 
-from ._core import GLTypeError, GLValueError, as_float, as_int, current, describe, gl_function
+from ._core import (
+    GLTypeError,
+    GLValueError,
+    as_float,
+    as_int,
+    current,
+    describe,
+    gl_function,
+    window_of,
+)
 
 __all__ = ["texdef2d", "tevdef", "texbind", "tevbind", "texgen"]
 
@@ -76,10 +85,10 @@ class TextureUnit:
 
 
 def _unit(ctx) -> TextureUnit:
-    unit = getattr(ctx, "texture_unit", None)
-    if unit is None:
-        unit = ctx.texture_unit = TextureUnit()
-    return unit
+    rec = window_of(ctx)
+    if rec.texture is None:  # (made on first use: most windows never texture)
+        rec.texture = TextureUnit()
+    return rec.texture
 
 
 def _rebind(ctx) -> None:

@@ -95,6 +95,7 @@ class Context:
         self.concave = False
         self.linestyle_pos = 0  # line-style position after the last line drawn
         self.resetls = True  # resetls(3G): the pattern restarts at each line
+        self.lsbackup = False  # lsbackup(3G): the last two pixels drawn whatever the style
         # clipplane(3G) (gl/_clip.py): the six planes' eye-space equations (None:
         # never defined), which are on, and the (K, 4) array of those on (replaced,
         # never mutated).  fogvertex(3G) (gl/_fog.py): the fog definition (a

@@ -79,6 +79,9 @@ class CommandStream:
         # snapshot changes between STATE ops (vgxsim.gl._draw._restate):
         # id(snapshot) -> (snapshot, record index, record).
         self.state_memo: dict[int, tuple] = {}
+        # The gl layer's memo of lmbind(LIGHTn) entries (vgxsim.gl._lighting):
+        # slot << 16 | index -> (light, modelview, bound entry); kept across flushes.
+        self.light_memo: dict[int, tuple] = {}
         self.forget()
 
     def forget(self) -> None:
