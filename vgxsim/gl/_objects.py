@@ -523,10 +523,10 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
 
     Nested objects run on an explicit stack, at most MAX_NESTING deep."""
     ctx = session.imm
-    if ctx is not None and not kw and not more and type(obj) is int and obj >= 0:
-        dobj = session.objects.get(obj)  # (a number past MAX_OBJECT is never stored)
+    if ctx is not None and not kw and not more and type(obj) is int:
+        dobj = session.objects.get(obj)  # (no number outside 0..MAX_OBJECT is stored)
         if dobj is None:
-            if obj > MAX_OBJECT:
+            if not 0 <= obj <= MAX_OBJECT:
                 _object_arg("callobj", (obj,))  # raises
             return
         ch = dobj.single
@@ -534,30 +534,39 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
             # splice() of the object's one chunk, inlined (a quad's callobj is mostly
             # the calls around the copy): what its checks decide -- no primitive need
             # be open, none is left open, nothing rare -- was decided at closeobj.
-            colour_op = C_OP
-            if ch.last_colour is not None:
-                if not ctx.config.rgb:
-                    return splice(ctx, ch)  # raises: RGB colour calls in colour map mode
+            if ch.last_colour is None:
+                plan = ch.plan_c
+            elif not ctx.config.rgb:
+                return splice(ctx, ch)  # raises: RGB colour calls in colour map mode
+            else:
                 bound = ctx.bound
-                if bound["material"] != 0 and bound["lmodel"] != 0:
-                    colour_op = _colour_op(ctx)
-            plan = ch.plans.get(colour_op)  # (a closed object's chunks never grow)
-            if plan is None:
-                plan = plan_of(ch, colour_op)
+                if bound["material"] != 0 and bound["lmodel"] != 0:  # lighting_active
+                    plan = ch.plans.get(_colour_op(ctx))
+                else:
+                    plan = ch.plan_c
+            if plan is None:  # (first call for this colour op; closed chunks never grow)
+                plan = plan_of(ch, C_OP if ch.last_colour is None else _colour_op(ctx))
             st = ctx.stream
-            if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
+            ops = st.ops
+            if st.parts_ops + len(ops) > MAX_STREAM_OPS:
                 drain(ctx)
+                ops = st.ops
             snap = ctx.raster._snapshot
             if not (snap is st.raster and snap is not None
                     and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
                     and ctx.lighting_serial == st.lighting_serial
                     and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
                 _restate_changed(ctx, st)
-            colour = ctx.colour
-            if (colour is not st.colour or ctx.normal is not st.normal
+            if plan.leads:
+                # The chunk starts with a C op, which sets the decoder's colour and
+                # clears its normal-sent flag: the caller's colour and last_sent reach
+                # no vertex, so only the normal and lmcolor_set need be in the stream.
+                if ctx.normal is not st.normal or ctx.lmcolor_set is not st.lmcolor_set:
+                    sync(ctx, st)
+            elif (ctx.colour is not st.colour or ctx.normal is not st.normal
                     or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
                 sync(ctx, st)
-            st.ops.extend(plan.ops)
+            ops.extend(plan.ops)
             st.fl.extend(plan.fl)
             if plan.plain:  # sets the colour and last_sent only (a colour, no normal)
                 ctx.colour = st.colour = plan.colour
@@ -748,10 +757,14 @@ class SplicePlan:
         The chunk sets a texture coordinate or the graphics position, or draws lines.
     plain : bool
         The chunk leaves a new colour and ``last_sent`` only (no normal, no material).
+    leads : bool
+        The chunk's first op is a C op (``colour_op`` C): the decoder takes its colour
+        and clears the normal-sent flag before any vertex, so the caller's colour and
+        ``last_sent`` need not be sent before it (callobj's inlined splice).
     """
 
     __slots__ = ("ops", "fl", "big", "colour", "normal", "last_sent", "lmcolor_set",
-                 "rare", "n_ops", "plain")
+                 "rare", "n_ops", "plain", "leads")
 
 
 def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
@@ -778,7 +791,10 @@ def plan_of(ch: Chunk, colour_op: int) -> SplicePlan:
     plan.rare = ch.texcoord is not None or ch.gpos is not None or ch.has_lines
     plan.plain = (plan.colour is not None and not plan.lmcolor_set and plan.normal is None
                   and plan.last_sent is not None)
+    plan.leads = colour_op == C_OP and len(ops_list) > 0 and ops_list[0] == C_OP
     ch.plans[colour_op] = plan
+    if colour_op == C_OP:
+        ch.plan_c = plan
     return plan
 
 

@@ -178,6 +178,7 @@ class Chunk:
         self._variants: dict[tuple, tuple] = {}
         # callobj's splice plans by colour op (vgxsim.gl._objects.plan_of).
         self.plans: dict[int, object] = {}
+        self.plan_c = None  # plans[C] (callobj's inlined splice reads it directly)
 
     def arrays_for(self, colour_op: int) -> tuple[np.ndarray, np.ndarray, list]:
         """The chunk's opcodes, with every CRAW rewritten to ``colour_op``, and its
