@@ -15,6 +15,7 @@ import numpy as np
 from vgxsim import coldstart, threads
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
+from vgxsim.kernels.queue import queue_triangles
 from vgxsim.kernels.render import bin_primitives, gather_band_records, render_bands
 from vgxsim.kernels.setup import setup_triangles_states
 from vgxsim.kernels.texture import setup_texture_planes
@@ -25,7 +26,6 @@ from vgxsim.state.codes import (
     FLAT,
     KIND_CLEAR,
     KIND_FRAGMENTS,
-    KIND_TRIANGLE,
     ROW_SIZE,
     S_DRAW_BACK,
     S_DRAW_FRONT,
@@ -197,6 +197,49 @@ class CommandBatch:
         self.c_vals = np.zeros((16, 4), np.int64)
         self.c_state = np.zeros(16, np.int64)
         self.g_kind = np.zeros(0, np.int64)  # band-ordered copies (_band_order)
+        self._kept: dict[str, np.ndarray] = {}  # per-call scratch (_scratch)
+
+    def _scratch(self, name: str, n: int, shape: tuple = (), dtype=np.int64) -> np.ndarray:
+        """A kept array of ``n`` rows (of ``shape``) for one call's intermediate values
+        (vertex positions, per-triangle state columns): grown on demand and reused,
+        because freshly allocated arrays of a call of many triangles cost their page
+        faults on first touch, more than the work written into them."""
+        arr = self._kept.get(name)
+        if arr is None or arr.shape[0] < n:
+            cap = max(n, 2 * (0 if arr is None else arr.shape[0]), 64)
+            arr = self._kept[name] = np.empty((cap,) + shape, dtype)
+        return arr[:n]
+
+    def _iota(self, n: int) -> np.ndarray:
+        """``np.arange(n)`` from a kept array (see :meth:`_scratch`)."""
+        arr = self._kept.get("iota")
+        if arr is None or arr.shape[0] < n:
+            arr = self._kept["iota"] = np.arange(max(n, 64), dtype=np.int64)
+        return arr[:n]
+
+    def _repeat(self, name: str, n: int, value: int) -> np.ndarray:
+        """``np.full(n, value, np.int64)`` in a kept array (see :meth:`_scratch`)."""
+        arr = self._scratch(name, n)
+        arr[:] = value
+        return arr
+
+    def _queue_triangles(self, start: int, end: int, scissor=None) -> None:
+        """Queue records ``start .. end - 1`` as triangle primitives, binned by their
+        box rows, cut to ``scissor`` (x0, x1, y0, y1) when given
+        (kernels/queue.py)."""
+        n = end - start
+        if n <= 0:
+            return
+        stop = self.nprims + n
+        self.p_kind = _grow(self.p_kind, stop)
+        self.p_ref = _grow(self.p_ref, stop)
+        self.p_y0 = _grow(self.p_y0, stop)
+        self.p_y1 = _grow(self.p_y1, stop)
+        clip = scissor is not None
+        sx0, sx1, sy0, sy1 = (int(v) for v in scissor) if clip else (0, 0, 0, 0)
+        queue_triangles(self.t_box, start, end, clip, sx0, sx1, sy0, sy1, self.p_kind,
+                        self.p_ref, self.p_y0, self.p_y1, self.nprims)
+        self.nprims = stop
 
     def _grow_records(self, end: int) -> None:
         """Grow the set-up record arrays to hold ``end`` records (capacity is kept
@@ -300,19 +343,13 @@ class CommandBatch:
             return 0
         # One set-up kernel for one state and for many (setup_triangles_states, with
         # the state and cull repeated): the first image then compiles one, not two.
-        idx = np.full(nt, self.state_index(rs), np.int64)
-        culls = np.full(nt, rs.cull, np.int64)
+        idx = self._repeat("idx", nt, self.state_index(rs))
+        culls = self._repeat("cull", nt, rs.cull)
         start = self._set_up(xf, yf, zw, col, tris, src, flat_col, rs.shademodel, idx, culls,
                              tex)
-        refs = np.arange(start, self.ntris, dtype=np.int64)
         # Bin by the rows the triangle can touch inside the raster rectangle, so bands
         # outside the scissor (a light's scissor rectangle) never see it.
-        box = self.t_box[start:self.ntris]
-        sx0, sx1, sy0, sy1 = rs.scissor
-        y0 = np.maximum(box[:, 2], sy0)
-        y1 = np.minimum(box[:, 3], sy1)
-        y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0) | (box[:, 0] > box[:, 1])] = -1
-        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
+        self._queue_triangles(start, self.ntris, rs.scissor)
         self._maybe_flush()
         return self.ntris - start
 
@@ -393,9 +430,7 @@ class CommandBatch:
         culls = np.ascontiguousarray(table[tri_state, 1])
         start = self._set_up(xf, yf, zw, col, tris, src, flat_col, rs.shademodel, idx, culls,
                              tex)
-        refs = np.arange(start, self.ntris, dtype=np.int64)
-        self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
-                        self.t_box[start:self.ntris, 3])
+        self._queue_triangles(start, self.ntris)
         self._maybe_flush()
         return self.ntris - start
 
@@ -442,8 +477,8 @@ class CommandBatch:
             return 0
         rs = states[0]
         if tri_state is None:
-            idx = np.full(nt, self.state_index(rs), np.int64)
-            culls = np.full(nt, rs.cull, np.int64)
+            idx = self._repeat("idx", nt, self.state_index(rs))
+            culls = self._repeat("cull", nt, rs.cull)
         else:
             rows = [(self.state_index(r), r.cull) for r in states]
             table = np.array(rows, np.int64).reshape(-1, 2)
@@ -457,12 +492,12 @@ class CommandBatch:
         znear, zfar = float(depth[0]), float(depth[1])
         gx, gy = guard
         sub = bool(rs.subpixel)
-        clip_v = np.empty((nv, 4))
-        code = np.empty(nv, np.uint16)
+        clip_v = self._scratch("clip_v", nv, (4,), np.float64)
+        code = self._scratch("code", nv, (), np.uint16)
         user = np.ascontiguousarray(user_planes, dtype=np.float64).reshape(-1, 4)
-        xf = np.empty(nv, np.int64)
-        yf = np.empty(nv, np.int64)
-        zw = np.empty(nv, np.float64)
+        xf = self._scratch("xf", nv)
+        yf = self._scratch("yf", nv)
+        zw = self._scratch("zw", nv, (), np.float64)
         nthreads = threads.get_threads()
         par = nthreads > 1 and nt >= PARALLEL_FRONT
         _run_chunks(par, nthreads, front_vertices, _cuts(nv, nthreads if par else 1), obj, mvp,
@@ -477,7 +512,7 @@ class CommandBatch:
                 zfar, sub)
             idx = np.ascontiguousarray(idx[rec_src])
             culls = np.ascontiguousarray(culls[rec_src])
-        src = np.arange(used, dtype=np.int64) if rec_src is None else rec_src
+        src = self._iota(used) if rec_src is None else rec_src
         colv = attrv if attr is not None else np.zeros((1, 4))
         start = self.ntris
         end = start + used
@@ -496,18 +531,8 @@ class CommandBatch:
             for f in futures:
                 f.result()
         self.ntris = end
-        refs = np.arange(start, end, dtype=np.int64)
-        box = self.t_box[start:end]
-        if tri_state is None:
-            # As add_triangles bins: by the rows inside the raster rectangle.
-            sx0, sx1, sy0, sy1 = rs.scissor
-            y0 = np.maximum(box[:, 2], sy0)
-            y1 = np.minimum(box[:, 3], sy1)
-            y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0)
-               | (box[:, 0] > box[:, 1])] = -1
-        else:
-            y0, y1 = box[:, 2], box[:, 3]
-        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
+        # As add_triangles bins: by the rows inside the raster rectangle (one state).
+        self._queue_triangles(start, end, rs.scissor if tri_state is None else None)
         self._maybe_flush()
         return used
 
