@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim import coldstart, threads
+from vgxsim.kernels.band_order import band_counts, scatter_records
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
 from vgxsim.kernels.queue import queue_triangles
@@ -141,6 +142,12 @@ class CommandBatch:
         their set-up records into band order so that each band reads its own
         front to back (kernels/render.py gather_band_records); on by default, a
         switch that changes nothing drawn.
+    scatter_bins : bool
+        With ``band_records``: the primitives are binned and their records written
+        into band order in one pass in drawing order, one sequential write stream
+        per band (kernels/band_order.py), instead of listed per band and then
+        gathered band by band (each band's pass re-reading the whole record arrays);
+        on by default, a switch that changes nothing drawn.
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -156,6 +163,7 @@ class CommandBatch:
     vector_pack = True
     small_path = True
     band_records = True
+    scatter_bins = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -260,6 +268,15 @@ class CommandBatch:
         (``band_records``): items ``0 .. n - 1``, the kinds and references, and the
         record arrays, for :func:`render_bands` in place of the batch's own."""
         n = items.shape[0]
+        self._band_capacity(n)
+        prims = (self.g_kind, self.g_ref)
+        # Chunks of items are disjoint slots: they copy on the worker threads.
+        _run_chunks(nthreads > 1, nthreads, _gather_range(items, self, prims),
+                    _cuts(n, nthreads))
+        return self.g_iota[:n], prims, self.g_records
+
+    def _band_capacity(self, n: int) -> None:
+        """Band-ordered arrays (``g_*``) for at least ``n`` entries."""
         if self.g_kind.shape[0] < n:
             cap = max(n, 2 * self.g_kind.shape[0], 64)
             self.g_iota = np.arange(cap, dtype=np.int64)
@@ -267,11 +284,43 @@ class CommandBatch:
             self.g_ref = np.empty(cap, np.int64)
             self.g_records = tuple(np.empty((cap,) + a.shape[1:], a.dtype)
                                    for a in self._records())
-        prims = (self.g_kind, self.g_ref)
-        # Chunks of items are disjoint slots: they copy on the worker threads.
-        _run_chunks(nthreads > 1, nthreads, _gather_range(items, self, prims),
-                    _cuts(n, nthreads))
-        return self.g_iota[:n], prims, self.g_records
+
+    def _scatter(self, shift: int, nbands: int, nthreads: int):
+        """Bin the primitives and write their records into band order in one pass in
+        drawing order (``scatter_bins``, kernels/band_order.py): ``(starts, items,
+        prims, records)`` for :func:`render_bands`, or None when the bins hold more
+        than ``GATHER_MAX`` entries (nothing written).  Chunks of primitives run on
+        the worker threads, each from its own free slot per band (the entries of
+        the chunks before it counted first), so each band stays in drawing order."""
+        n = self.nprims
+        cuts = _cuts(n, nthreads)
+        counts = np.zeros((len(cuts), nbands), np.int64)
+        par = nthreads > 1 and len(cuts) > 1
+        pool = threads.pool(nthreads) if par else None
+
+        def each(job):
+            if not par:
+                for c in range(len(cuts)):
+                    job(c)
+                return
+            for f in [pool.submit(job, c) for c in range(len(cuts))]:
+                f.result()
+
+        py0, py1 = self.p_y0, self.p_y1
+        each(lambda c: band_counts(py0, py1, cuts[c][0], cuts[c][1], shift, nbands, counts[c]))
+        per_band = counts.sum(axis=0)
+        total = int(per_band.sum())
+        if total > GATHER_MAX:
+            return None
+        starts = np.zeros(nbands + 1, np.int64)
+        starts[1:] = np.cumsum(per_band)
+        fills = starts[:nbands] + np.cumsum(counts, axis=0) - counts  # chunks before
+        self._band_capacity(total)
+        out = (self.g_kind, self.g_ref, *self.g_records)
+        own = (self.p_kind, self.p_ref, *self._records())
+        each(lambda c: scatter_records(cuts[c][0], cuts[c][1], py0, py1, shift, nbands,
+                                       fills[c].copy(), *own, *out))
+        return starts, self.g_iota[:total], (self.g_kind, self.g_ref), self.g_records
 
     def _reset(self) -> None:
         """Empty the batch (counters only; the arrays keep their capacity)."""
@@ -630,14 +679,19 @@ class CommandBatch:
         nthreads = max(1, threads.get_threads())
         shift = band_shift(height, nthreads)
         nbands = (height + (1 << shift) - 1) >> shift
-        starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
         work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
         textured = bool(states[:, S_TEXTURE].any())
-        if (self.band_records and not textured and nbands > 1 and self.ntris >= GATHER_MIN
-                and items.shape[0] <= GATHER_MAX):
-            items, prims, records = self._band_order(items, nthreads)
+        ordered = (self.band_records and not textured and nbands > 1
+                   and self.ntris >= GATHER_MIN)
+        got = self._scatter(shift, nbands, nthreads) if ordered and self.scatter_bins else None
+        if got is not None:
+            starts, items, prims, records = got
         else:
-            prims, records = (self.p_kind, self.p_ref), self._records()
+            starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
+            if ordered and items.shape[0] <= GATHER_MAX:
+                items, prims, records = self._band_order(items, nthreads)
+            else:
+                prims, records = (self.p_kind, self.p_ref), self._records()
         args = (
             starts, items, shift, height, *prims, *records,
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,
