@@ -11,7 +11,8 @@ as_homogeneous / transform_points / clip_triangles / project_snap (front end),
 setup_triangles_states (kernels/setup.py), bin_primitives and gather_band_records
 (binning), render_bands (the band kernel).  Process CPU time, not wall time: the
 machine this runs on is usually shared, and CPU time is the steadier figure.
-``--ab SWITCH`` runs each round twice, with the CommandBatch switch SWITCH on and
+``--ab SWITCH`` runs each round twice, with the switch SWITCH (a CommandBatch
+attribute, or a dotted module constant such as vgxsim.geometry.pipeline.FUSED_FRONT) on and
 then off (alternating, so load drifts hit both alike), and reports both, with the
 median wall time of a round beside the CPU time.
 """
@@ -20,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import cProfile
+import importlib
 import os
 import pstats
 import sys
@@ -34,6 +36,15 @@ import scenes  # noqa: E402
 
 from vgxsim import threads  # noqa: E402
 from vgxsim.batch import CommandBatch  # noqa: E402
+
+
+def _switch_owner(switch: str | None):
+    """Where a switch lives: ``name`` is a CommandBatch attribute, ``pkg.mod.NAME`` a
+    module constant (vgxsim.geometry.pipeline.FUSED_FRONT)."""
+    if switch is None or "." not in switch:
+        return CommandBatch, switch
+    mod, _, attr = switch.rpartition(".")
+    return importlib.import_module(mod), attr
 
 
 def stage_times(count: int, area: float, nthreads: int, rounds: int,
@@ -52,13 +63,14 @@ def stage_times(count: int, area: float, nthreads: int, rounds: int,
     numba.set_num_threads(min(nthreads, numba.config.NUMBA_NUM_THREADS))
     run, n = scenes.small_triangles(count=count, area=area, tile_order=tile_order)
     settings = [None] if switch is None else [True, False]
-    keep = None if switch is None else getattr(CommandBatch, switch)
+    owner, attr = _switch_owner(switch)
+    keep = None if switch is None else getattr(owner, attr)
     samples: dict = {s: {} for s in settings}
     try:
         for r in range(rounds + 1):
             for setting in settings:
                 if switch is not None:
-                    setattr(CommandBatch, switch, setting)
+                    setattr(owner, attr, setting)
                 if r == 0:
                     run()  # compile and warm up
                     continue
@@ -74,7 +86,7 @@ def stage_times(count: int, area: float, nthreads: int, rounds: int,
                     got.setdefault(name, []).append(row[2])  # own time (tottime)
     finally:
         if switch is not None:
-            setattr(CommandBatch, switch, keep)
+            setattr(owner, attr, keep)
     return {s: {k: float(np.median(v)) * 1e9 / n for k, v in got.items()
                 if len(v) == rounds} for s, got in samples.items()}
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .options import inline, jit
+from .options import inline, inline_ir, jit
 
 SUBPIXEL_BITS = 8
 ONE = 1 << SUBPIXEL_BITS
@@ -87,21 +87,44 @@ def outcodes(v, gx, gy, user):
     n = v.shape[0]
     out = np.zeros(n, dtype=np.uint16)
     for i in range(n):
-        x, y, z, w = v[i, 0], v[i, 1], v[i, 2], v[i, 3]
-        if not (np.isfinite(x) and np.isfinite(y) and np.isfinite(z) and np.isfinite(w)):
-            out[i] = NONFINITE
-            continue
-        c = 0
-        for p in range(N_PLANES + user.shape[0]):
-            if not (_plane_dist(x, y, z, w, p, gx, gy, user) >= 0.0):
-                c |= _plane_bit(p)
-        if c == 0 and not (w > 0.0):
-            # Only the clip-space origin (the eye of a perspective projection) is inside
-            # all six planes with w = 0: send it to the clipper, which drops polygons
-            # touching it (they are edge-on and cover nothing).
-            c = ORIGIN_BIT
-        out[i] = c
+        out[i] = vertex_outcode(v[i, 0], v[i, 1], v[i, 2], v[i, 3], gx, gy, user)
     return out
+
+
+@inline_ir
+def vertex_outcode(x, y, z, w, gx, gy, user):
+    """The outcode of one clip-space vertex (:func:`outcodes`; a helper so that the
+    fused front end, kernels/front.py, computes it from scalars by the same code).
+    Inlined at the IR level: as a call it pays two atomic reference-count updates
+    on ``user`` per vertex, three times the outcode's own cost."""
+    if not (np.isfinite(x) and np.isfinite(y) and np.isfinite(z) and np.isfinite(w)):
+        return NONFINITE
+    # The six frustum planes written out (the _dist expressions, bits 0-5): a loop
+    # over a plane number branches per plane and costs several times the arithmetic.
+    c = 0
+    if not (w + z >= 0.0):
+        c |= 1
+    if not (w - z >= 0.0):
+        c |= 2
+    if not (gx * w - x >= 0.0):
+        c |= 4
+    if not (gx * w + x >= 0.0):
+        c |= 8
+    if not (gy * w - y >= 0.0):
+        c |= 16
+    if not (gy * w + y >= 0.0):
+        c |= 32
+    for j in range(user.shape[0]):
+        # _plane_dist and _plane_bit of user plane j (plane N_PLANES + j), written
+        # here: a call taking ``user`` would pay the reference-count updates again.
+        if not (user[j, 0] * x + user[j, 1] * y + user[j, 2] * z + user[j, 3] * w >= 0.0):
+            c |= 1 << (N_PLANES + 1 + j)
+    if c == 0 and not (w > 0.0):
+        # Only the clip-space origin (the eye of a perspective projection) is inside
+        # all six planes with w = 0: send it to the clipper, which drops polygons
+        # touching it (they are edge-on and cover nothing).
+        c = ORIGIN_BIT
+    return c
 
 
 @jit
@@ -282,22 +305,29 @@ def project_snap(v, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel):
     hx = (vp_r - vp_l + 1) / 2.0
     hy = (vp_t - vp_b + 1) / 2.0
     hz = (zfar - znear) / 2.0
-    limit = float(COORD_LIMIT)
     for i in range(n):
-        w = v[i, 3]
-        if not (w > 0.0):
-            continue
-        x = (vp_l - 0.5) + (v[i, 0] / w + 1.0) * hx
-        y = (vp_b - 0.5) + (v[i, 1] / w + 1.0) * hy
-        z = znear + (v[i, 2] / w + 1.0) * hz
-        if not (np.isfinite(x) and np.isfinite(y) and np.isfinite(z)):
-            continue
-        x = min(max(x, -limit), limit)
-        y = min(max(y, -limit), limit)
-        xf[i] = snap(x, subpixel)
-        yf[i] = snap(y, subpixel)
-        zw[i] = z
+        xf[i], yf[i], zw[i] = project_vertex(v[i, 0], v[i, 1], v[i, 2], v[i, 3], vp_l, vp_b,
+                                             hx, hy, hz, znear, subpixel)
     return xf, yf, zw
+
+
+@inline
+def project_vertex(x, y, z, w, vp_l, vp_b, hx, hy, hz, znear, subpixel):
+    """One vertex of :func:`project_snap` (``hx, hy, hz``: the half extents it
+    computes): its fixed-point x, y and window z, (0, 0, 0.0) where w <= 0 or the
+    result is not finite.  A helper so that the fused front end (kernels/front.py)
+    projects from scalars by the same code."""
+    if not (w > 0.0):
+        return np.int64(0), np.int64(0), 0.0
+    xw = (vp_l - 0.5) + (x / w + 1.0) * hx
+    yw = (vp_b - 0.5) + (y / w + 1.0) * hy
+    zw = znear + (z / w + 1.0) * hz
+    if not (np.isfinite(xw) and np.isfinite(yw) and np.isfinite(zw)):
+        return np.int64(0), np.int64(0), 0.0
+    limit = float(COORD_LIMIT)
+    xw = min(max(xw, -limit), limit)
+    yw = min(max(yw, -limit), limit)
+    return snap(xw, subpixel), snap(yw, subpixel), zw
 
 
 @jit

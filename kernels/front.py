@@ -42,7 +42,14 @@ from vgxsim.stream.opcodes import (
     TMESH,
 )
 
-from .clip import MAX_POLY, NONFINITE, clip_triangles, outcodes, project_snap
+from .clip import (
+    MAX_POLY,
+    NONFINITE,
+    clip_triangles,
+    project_snap,
+    project_vertex,
+    vertex_outcode,
+)
 from .lighting import _shade_vertex
 from .options import jit
 
@@ -72,30 +79,30 @@ def front_vertices(obj, mvp, gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, 
         Outputs, written in rows ``v0 .. v1 - 1``.
     v0, v1 : int
     """
+    # One scalar pass per vertex (no per-stage arrays): project_snap's half extents.
+    hx = (vp_r - vp_l + 1) / 2.0
+    hy = (vp_t - vp_b + 1) / 2.0
+    hz = (zfar - znear) / 2.0
     for i in range(v0, v1):
         # transform_points' order: ((p0*m0j + p1*m1j) + p2*m2j) + p3*m3j.
         p0, p1, p2, p3 = obj[i, 0], obj[i, 1], obj[i, 2], obj[i, 3]
-        big = 0.0
-        finite = True
-        for q in range(4):
-            v = ((p0 * mvp[0, q] + p1 * mvp[1, q]) + p2 * mvp[2, q]) + p3 * mvp[3, q]
-            clip_v[i, q] = v
-            a = abs(v)
-            if not np.isfinite(a):
-                finite = False
-            elif a > big:
-                big = a
-        if finite and big > HUGE:
+        cx = ((p0 * mvp[0, 0] + p1 * mvp[1, 0]) + p2 * mvp[2, 0]) + p3 * mvp[3, 0]
+        cy = ((p0 * mvp[0, 1] + p1 * mvp[1, 1]) + p2 * mvp[2, 1]) + p3 * mvp[3, 1]
+        cz = ((p0 * mvp[0, 2] + p1 * mvp[1, 2]) + p2 * mvp[2, 2]) + p3 * mvp[3, 2]
+        cw = ((p0 * mvp[0, 3] + p1 * mvp[1, 3]) + p2 * mvp[2, 3]) + p3 * mvp[3, 3]
+        big = max(max(abs(cx), abs(cy)), max(abs(cz), abs(cw)))
+        if big > HUGE and (np.isfinite(cx) and np.isfinite(cy) and np.isfinite(cz)
+                           and np.isfinite(cw)):
             # The same point divided by its largest magnitude (geometry.pipeline._tame,
             # row by row): keeps the clipper's plane distances finite.
-            for q in range(4):
-                clip_v[i, q] = clip_v[i, q] / big
-    c = clip_v[v0:v1]
-    code[v0:v1] = outcodes(c, gx, gy, user)
-    x, y, z = project_snap(c, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel)
-    xf[v0:v1] = x
-    yf[v0:v1] = y
-    zw[v0:v1] = z
+            cx, cy, cz, cw = cx / big, cy / big, cz / big, cw / big
+        clip_v[i, 0] = cx
+        clip_v[i, 1] = cy
+        clip_v[i, 2] = cz
+        clip_v[i, 3] = cw
+        code[i] = vertex_outcode(cx, cy, cz, cw, gx, gy, user)
+        xf[i], yf[i], zw[i] = project_vertex(cx, cy, cz, cw, vp_l, vp_b, hx, hy, hz, znear,
+                                             subpixel)
 
 
 @jit

@@ -13,8 +13,10 @@ from __future__ import annotations
 import numpy as np
 
 from vgxsim import coldstart, threads
+from vgxsim.kernels.band_order import band_counts, scatter_records
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
+from vgxsim.kernels.queue import queue_triangles
 from vgxsim.kernels.render import bin_primitives, gather_band_records, render_bands
 from vgxsim.kernels.setup import setup_triangles_states
 from vgxsim.kernels.texture import setup_texture_planes
@@ -25,7 +27,6 @@ from vgxsim.state.codes import (
     FLAT,
     KIND_CLEAR,
     KIND_FRAGMENTS,
-    KIND_TRIANGLE,
     ROW_SIZE,
     S_DRAW_BACK,
     S_DRAW_FRONT,
@@ -141,6 +142,12 @@ class CommandBatch:
         their set-up records into band order so that each band reads its own
         front to back (kernels/render.py gather_band_records); on by default, a
         switch that changes nothing drawn.
+    scatter_bins : bool
+        With ``band_records``: the primitives are binned and their records written
+        into band order in one pass in drawing order, one sequential write stream
+        per band (kernels/band_order.py), instead of listed per band and then
+        gathered band by band (each band's pass re-reading the whole record arrays);
+        on by default, a switch that changes nothing drawn.
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -156,6 +163,7 @@ class CommandBatch:
     vector_pack = True
     small_path = True
     band_records = True
+    scatter_bins = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -197,6 +205,49 @@ class CommandBatch:
         self.c_vals = np.zeros((16, 4), np.int64)
         self.c_state = np.zeros(16, np.int64)
         self.g_kind = np.zeros(0, np.int64)  # band-ordered copies (_band_order)
+        self._kept: dict[str, np.ndarray] = {}  # per-call scratch (_scratch)
+
+    def _scratch(self, name: str, n: int, shape: tuple = (), dtype=np.int64) -> np.ndarray:
+        """A kept array of ``n`` rows (of ``shape``) for one call's intermediate values
+        (vertex positions, per-triangle state columns): grown on demand and reused,
+        because freshly allocated arrays of a call of many triangles cost their page
+        faults on first touch, more than the work written into them."""
+        arr = self._kept.get(name)
+        if arr is None or arr.shape[0] < n:
+            cap = max(n, 2 * (0 if arr is None else arr.shape[0]), 64)
+            arr = self._kept[name] = np.empty((cap,) + shape, dtype)
+        return arr[:n]
+
+    def _iota(self, n: int) -> np.ndarray:
+        """``np.arange(n)`` from a kept array (see :meth:`_scratch`)."""
+        arr = self._kept.get("iota")
+        if arr is None or arr.shape[0] < n:
+            arr = self._kept["iota"] = np.arange(max(n, 64), dtype=np.int64)
+        return arr[:n]
+
+    def _repeat(self, name: str, n: int, value: int) -> np.ndarray:
+        """``np.full(n, value, np.int64)`` in a kept array (see :meth:`_scratch`)."""
+        arr = self._scratch(name, n)
+        arr[:] = value
+        return arr
+
+    def _queue_triangles(self, start: int, end: int, scissor=None) -> None:
+        """Queue records ``start .. end - 1`` as triangle primitives, binned by their
+        box rows, cut to ``scissor`` (x0, x1, y0, y1) when given
+        (kernels/queue.py)."""
+        n = end - start
+        if n <= 0:
+            return
+        stop = self.nprims + n
+        self.p_kind = _grow(self.p_kind, stop)
+        self.p_ref = _grow(self.p_ref, stop)
+        self.p_y0 = _grow(self.p_y0, stop)
+        self.p_y1 = _grow(self.p_y1, stop)
+        clip = scissor is not None
+        sx0, sx1, sy0, sy1 = (int(v) for v in scissor) if clip else (0, 0, 0, 0)
+        queue_triangles(self.t_box, start, end, clip, sx0, sx1, sy0, sy1, self.p_kind,
+                        self.p_ref, self.p_y0, self.p_y1, self.nprims)
+        self.nprims = stop
 
     def _grow_records(self, end: int) -> None:
         """Grow the set-up record arrays to hold ``end`` records (capacity is kept
@@ -217,6 +268,15 @@ class CommandBatch:
         (``band_records``): items ``0 .. n - 1``, the kinds and references, and the
         record arrays, for :func:`render_bands` in place of the batch's own."""
         n = items.shape[0]
+        self._band_capacity(n)
+        prims = (self.g_kind, self.g_ref)
+        # Chunks of items are disjoint slots: they copy on the worker threads.
+        _run_chunks(nthreads > 1, nthreads, _gather_range(items, self, prims),
+                    _cuts(n, nthreads))
+        return self.g_iota[:n], prims, self.g_records
+
+    def _band_capacity(self, n: int) -> None:
+        """Band-ordered arrays (``g_*``) for at least ``n`` entries."""
         if self.g_kind.shape[0] < n:
             cap = max(n, 2 * self.g_kind.shape[0], 64)
             self.g_iota = np.arange(cap, dtype=np.int64)
@@ -224,11 +284,43 @@ class CommandBatch:
             self.g_ref = np.empty(cap, np.int64)
             self.g_records = tuple(np.empty((cap,) + a.shape[1:], a.dtype)
                                    for a in self._records())
-        prims = (self.g_kind, self.g_ref)
-        # Chunks of items are disjoint slots: they copy on the worker threads.
-        _run_chunks(nthreads > 1, nthreads, _gather_range(items, self, prims),
-                    _cuts(n, nthreads))
-        return self.g_iota[:n], prims, self.g_records
+
+    def _scatter(self, shift: int, nbands: int, nthreads: int):
+        """Bin the primitives and write their records into band order in one pass in
+        drawing order (``scatter_bins``, kernels/band_order.py): ``(starts, items,
+        prims, records)`` for :func:`render_bands`, or None when the bins hold more
+        than ``GATHER_MAX`` entries (nothing written).  Chunks of primitives run on
+        the worker threads, each from its own free slot per band (the entries of
+        the chunks before it counted first), so each band stays in drawing order."""
+        n = self.nprims
+        cuts = _cuts(n, nthreads)
+        counts = np.zeros((len(cuts), nbands), np.int64)
+        par = nthreads > 1 and len(cuts) > 1
+        pool = threads.pool(nthreads) if par else None
+
+        def each(job):
+            if not par:
+                for c in range(len(cuts)):
+                    job(c)
+                return
+            for f in [pool.submit(job, c) for c in range(len(cuts))]:
+                f.result()
+
+        py0, py1 = self.p_y0, self.p_y1
+        each(lambda c: band_counts(py0, py1, cuts[c][0], cuts[c][1], shift, nbands, counts[c]))
+        per_band = counts.sum(axis=0)
+        total = int(per_band.sum())
+        if total > GATHER_MAX:
+            return None
+        starts = np.zeros(nbands + 1, np.int64)
+        starts[1:] = np.cumsum(per_band)
+        fills = starts[:nbands] + np.cumsum(counts, axis=0) - counts  # chunks before
+        self._band_capacity(total)
+        out = (self.g_kind, self.g_ref, *self.g_records)
+        own = (self.p_kind, self.p_ref, *self._records())
+        each(lambda c: scatter_records(cuts[c][0], cuts[c][1], py0, py1, shift, nbands,
+                                       fills[c].copy(), *own, *out))
+        return starts, self.g_iota[:total], (self.g_kind, self.g_ref), self.g_records
 
     def _reset(self) -> None:
         """Empty the batch (counters only; the arrays keep their capacity)."""
@@ -300,19 +392,13 @@ class CommandBatch:
             return 0
         # One set-up kernel for one state and for many (setup_triangles_states, with
         # the state and cull repeated): the first image then compiles one, not two.
-        idx = np.full(nt, self.state_index(rs), np.int64)
-        culls = np.full(nt, rs.cull, np.int64)
+        idx = self._repeat("idx", nt, self.state_index(rs))
+        culls = self._repeat("cull", nt, rs.cull)
         start = self._set_up(xf, yf, zw, col, tris, src, flat_col, rs.shademodel, idx, culls,
                              tex)
-        refs = np.arange(start, self.ntris, dtype=np.int64)
         # Bin by the rows the triangle can touch inside the raster rectangle, so bands
         # outside the scissor (a light's scissor rectangle) never see it.
-        box = self.t_box[start:self.ntris]
-        sx0, sx1, sy0, sy1 = rs.scissor
-        y0 = np.maximum(box[:, 2], sy0)
-        y1 = np.minimum(box[:, 3], sy1)
-        y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0) | (box[:, 0] > box[:, 1])] = -1
-        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
+        self._queue_triangles(start, self.ntris, rs.scissor)
         self._maybe_flush()
         return self.ntris - start
 
@@ -393,9 +479,7 @@ class CommandBatch:
         culls = np.ascontiguousarray(table[tri_state, 1])
         start = self._set_up(xf, yf, zw, col, tris, src, flat_col, rs.shademodel, idx, culls,
                              tex)
-        refs = np.arange(start, self.ntris, dtype=np.int64)
-        self._add_prims(KIND_TRIANGLE, refs, self.t_box[start:self.ntris, 2],
-                        self.t_box[start:self.ntris, 3])
+        self._queue_triangles(start, self.ntris)
         self._maybe_flush()
         return self.ntris - start
 
@@ -442,8 +526,8 @@ class CommandBatch:
             return 0
         rs = states[0]
         if tri_state is None:
-            idx = np.full(nt, self.state_index(rs), np.int64)
-            culls = np.full(nt, rs.cull, np.int64)
+            idx = self._repeat("idx", nt, self.state_index(rs))
+            culls = self._repeat("cull", nt, rs.cull)
         else:
             rows = [(self.state_index(r), r.cull) for r in states]
             table = np.array(rows, np.int64).reshape(-1, 2)
@@ -457,12 +541,12 @@ class CommandBatch:
         znear, zfar = float(depth[0]), float(depth[1])
         gx, gy = guard
         sub = bool(rs.subpixel)
-        clip_v = np.empty((nv, 4))
-        code = np.empty(nv, np.uint16)
+        clip_v = self._scratch("clip_v", nv, (4,), np.float64)
+        code = self._scratch("code", nv, (), np.uint16)
         user = np.ascontiguousarray(user_planes, dtype=np.float64).reshape(-1, 4)
-        xf = np.empty(nv, np.int64)
-        yf = np.empty(nv, np.int64)
-        zw = np.empty(nv, np.float64)
+        xf = self._scratch("xf", nv)
+        yf = self._scratch("yf", nv)
+        zw = self._scratch("zw", nv, (), np.float64)
         nthreads = threads.get_threads()
         par = nthreads > 1 and nt >= PARALLEL_FRONT
         _run_chunks(par, nthreads, front_vertices, _cuts(nv, nthreads if par else 1), obj, mvp,
@@ -477,7 +561,7 @@ class CommandBatch:
                 zfar, sub)
             idx = np.ascontiguousarray(idx[rec_src])
             culls = np.ascontiguousarray(culls[rec_src])
-        src = np.arange(used, dtype=np.int64) if rec_src is None else rec_src
+        src = self._iota(used) if rec_src is None else rec_src
         colv = attrv if attr is not None else np.zeros((1, 4))
         start = self.ntris
         end = start + used
@@ -496,18 +580,8 @@ class CommandBatch:
             for f in futures:
                 f.result()
         self.ntris = end
-        refs = np.arange(start, end, dtype=np.int64)
-        box = self.t_box[start:end]
-        if tri_state is None:
-            # As add_triangles bins: by the rows inside the raster rectangle.
-            sx0, sx1, sy0, sy1 = rs.scissor
-            y0 = np.maximum(box[:, 2], sy0)
-            y1 = np.minimum(box[:, 3], sy1)
-            y1[(y0 > y1) | (box[:, 0] > sx1) | (box[:, 1] < sx0)
-               | (box[:, 0] > box[:, 1])] = -1
-        else:
-            y0, y1 = box[:, 2], box[:, 3]
-        self._add_prims(KIND_TRIANGLE, refs, y0, y1)
+        # As add_triangles bins: by the rows inside the raster rectangle (one state).
+        self._queue_triangles(start, end, rs.scissor if tri_state is None else None)
         self._maybe_flush()
         return used
 
@@ -605,14 +679,19 @@ class CommandBatch:
         nthreads = max(1, threads.get_threads())
         shift = band_shift(height, nthreads)
         nbands = (height + (1 << shift) - 1) >> shift
-        starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
         work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
         textured = bool(states[:, S_TEXTURE].any())
-        if (self.band_records and not textured and nbands > 1 and self.ntris >= GATHER_MIN
-                and items.shape[0] <= GATHER_MAX):
-            items, prims, records = self._band_order(items, nthreads)
+        ordered = (self.band_records and not textured and nbands > 1
+                   and self.ntris >= GATHER_MIN)
+        got = self._scatter(shift, nbands, nthreads) if ordered and self.scatter_bins else None
+        if got is not None:
+            starts, items, prims, records = got
         else:
-            prims, records = (self.p_kind, self.p_ref), self._records()
+            starts, items = bin_primitives(self.p_y0, self.p_y1, self.nprims, shift, nbands)
+            if ordered and items.shape[0] <= GATHER_MAX:
+                items, prims, records = self._band_order(items, nthreads)
+            else:
+                prims, records = (self.p_kind, self.p_ref), self._records()
         args = (
             starts, items, shift, height, *prims, *records,
             self.f_xy, self.f_z, self.f_rgba, self.r_range, self.r_state,

@@ -89,7 +89,6 @@ def _scene(rng, n):
 
 
 def _render(cmds, nthreads, **switches):
-    keep = threads.get_threads()
     threads.set_threads(nthreads)
     try:
         fb = kernel_framebuffer(W, H, double=True, zbits=24, stencil=8)
@@ -100,7 +99,7 @@ def _render(cmds, nthreads, **switches):
         batch.flush()
         return planes_of(fb), batch.work()
     finally:
-        threads.set_threads(keep)
+        threads.set_threads(None)  # follow numba again (not an override of its count)
 
 
 @pytest.mark.parametrize("seed", range(2))

@@ -21,12 +21,14 @@ from .texgen import per_w, texture_coords
 #: Fast-path switch: transform, clip, project, snap and set-up of triangles fused per
 #: chunk and run on the worker threads (CommandBatch.add_object_triangles,
 #: kernels/front.py).  False: the stage-by-stage passes below, which give the same
-#: planes (tests/pipeline/test_fused_front.py compares).  Off by default: on the
-#: shared 2-core machine it measured no gain in CPU time (its point, vertex work on
-#: both threads, shows only in wall time on idle cores) and it adds about 3 s of
-#: compilation to a cold start; bench/report.py times both, switch it on when a quiet
-#: machine shows the gain (DESIGN: fast paths only where a benchmark shows one).
-FUSED_FRONT = False
+#: planes (tests/pipeline/test_fused_front.py compares).  On by default since its
+#: vertex pass runs as one scalar loop (no per-stage arrays): 200k 10-pixel
+#: triangles cost 763 ns each with it, 906 without (1 thread, CPU time, alternating
+#: rounds, bench/small_stages.py --ab vgxsim.geometry.pipeline.FUSED_FRONT), and it
+#: lets CommandBatch.band_setup write set-up records in band order; bench/report.py
+#: times both.  Its kernels compile in the cold-start helper process
+#: (vgxsim/coldstart.py draws through draw_arrays), beside the band kernel.
+FUSED_FRONT = True
 
 GUARD_PIXELS = 16384.0  # guard band half-width beyond the viewport centre, pixels
 

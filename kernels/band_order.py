@@ -1,0 +1,99 @@
+"""Records into band order by one pass in drawing order (CommandBatch.scatter_bins).
+
+The band kernel (kernels/render.py render_bands) reads each band's primitives
+front to back when their set-up records are copied into band order first.  The
+copy used to be a gather (kernels/render.py gather_band_records): entry by entry
+of each band, the record of a scattered primitive, so every band's pass read the
+whole record arrays again, a few records per cache line (200k 10-pixel
+triangles, 1280x1024: 99 ns a triangle on 4 bands, 154 on 16).  Here the
+primitives are walked once, in drawing order, and each record is written to the
+next free slot of every band it touches: the reads are sequential, the writes
+one sequential stream per band (60 and 87 ns in the same test).
+
+Chunks of primitives may run on different threads: each starts from its own free
+slot per band (the bands' starts plus the entries the chunks before it put
+there, :func:`band_counts`), so every band's entries stay in drawing order, as
+kernels/render.py bin_primitives lists them.
+"""
+
+from __future__ import annotations
+
+from vgxsim.state.codes import KIND_TRIANGLE
+
+from .options import inline_ir, jit
+
+
+@jit
+def band_counts(py0, py1, lo, hi, band_shift, nbands, counts):
+    """Add to ``counts[b]`` how many of primitives ``lo .. hi - 1`` touch band ``b``
+    (rows ``py0 .. py1``, the bands of bin_primitives).
+
+    Parameters
+    ----------
+    py0, py1 : ndarray, shape (P,), int64
+    lo, hi : int
+    band_shift, nbands : int
+    counts : ndarray, shape (nbands,), int64
+    """
+    for p in range(lo, hi):
+        b0 = max(py0[p], 0) >> band_shift
+        b1 = min(py1[p] >> band_shift, nbands - 1)
+        for b in range(b0, b1 + 1):
+            counts[b] += 1
+
+
+@inline_ir
+def _copy_record(s, i, t_edge, t_box, t_z, t_zlim, t_col, t_state, g_edge, g_box, g_z,
+                 g_zlim, g_col, g_state):
+    """Record ``s`` of the ``t_*`` arrays to slot ``i`` of the ``g_*`` arrays."""
+    for e in range(3):
+        for c in range(3):
+            g_edge[i, e, c] = t_edge[s, e, c]
+    for c in range(4):
+        g_box[i, c] = t_box[s, c]
+    for c in range(5):
+        g_z[i, c] = t_z[s, c]
+    g_zlim[i, 0] = t_zlim[s, 0]
+    g_zlim[i, 1] = t_zlim[s, 1]
+    for ch in range(4):
+        for c in range(3):
+            g_col[i, ch, c] = t_col[s, ch, c]
+    g_state[i] = t_state[s]
+
+
+@jit
+def scatter_records(lo, hi, py0, py1, band_shift, nbands, fill, p_kind, p_ref, t_edge, t_box,
+                    t_z, t_zlim, t_col, t_state, g_kind, g_ref, g_edge, g_box, g_z, g_zlim,
+                    g_col, g_state):
+    """Primitives ``lo .. hi - 1`` (set up already) into band order.
+
+    Parameters
+    ----------
+    lo, hi : int
+    py0, py1 : ndarray, shape (P,), int64
+        Rows of each primitive.
+    band_shift, nbands : int
+    fill : ndarray, shape (nbands,), int64
+        Next free slot of each band; advanced.
+    p_kind, p_ref : ndarray, shape (P,), int64
+    t_edge, t_box, t_z, t_zlim, t_col, t_state : ndarray
+        The batch's set-up records (kernels/setup.py).
+    g_kind, g_ref, g_edge, g_box, g_z, g_zlim, g_col, g_state : ndarray
+        Band-ordered entries: a triangle's kind, its own slot as reference and its
+        record there; other kinds their reference unchanged (as
+        kernels/render.py gather_band_records).
+    """
+    for p in range(lo, hi):
+        b0 = max(py0[p], 0) >> band_shift
+        b1 = min(py1[p] >> band_shift, nbands - 1)
+        k = p_kind[p]
+        for b in range(b0, b1 + 1):
+            i = fill[b]
+            fill[b] = i + 1
+            g_kind[i] = k
+            if k != KIND_TRIANGLE:
+                g_ref[i] = p_ref[p]
+                continue
+            g_ref[i] = i
+            _copy_record(p_ref[p], i, t_edge, t_box, t_z, t_zlim, t_col, t_state, g_edge,
+                         g_box, g_z, g_zlim, g_col, g_state)
