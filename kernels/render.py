@@ -60,6 +60,7 @@ from vgxsim.state.codes import (
     WORK_STENCIL_WRITES,
 )
 
+from .blocks import z_passed_row
 from .fragment import (
     add_sat,
     blend_sa_msa,
@@ -94,6 +95,7 @@ from .tiles import (
     TILE_ROW_MIN_PIXELS,
     TILE_SHIFT,
     TILE_W,
+    TILE_ZPASS,
     classify_tiles,
     note_z_cleared,
     note_z_written,
@@ -172,7 +174,7 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tight_tiles, step_spans, vector_pack, small_path, tb, runs, spans, work, tex,
+    tight_tiles, step_spans, vector_pack, small_path, block_update, tb, runs, spans, work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -181,6 +183,15 @@ def _triangle_rows(
     if xlo > xhi or ylo > yhi:
         return
     skip = skip_tiles and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
+    # The block update (kernels/blocks.py): the passes with a z-passed row loop.  Only
+    # where z failure is a no-op: those passes read tile bounds anyway (skip_tiles), so
+    # the switch changes no bound, hence no skipped tile nor any other work counter.
+    zpass = (block_update and cover_blocks and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
+             and not edge_mode and not general_only
+             and (dv[D_MODE] == MODE_ZSTENCIL_ADD or dv[D_MODE] == MODE_ZSTENCIL
+                  or dv[D_MODE] == MODE_ZONLY
+                  or (dv[D_MODE] == MODE_COLOUR and (dv[D_CBLEND] == CBLEND_REPLACE
+                                                     or dv[D_CBLEND] == CBLEND_ADD))))
     step = step_spans and not edge_mode
     classify = (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
     if (small_path and not classify and xhi - xlo < SMALL_NARROW and not general_only
@@ -287,7 +298,7 @@ def _triangle_rows(
                                                          else TILE_MIN_PIXELS):
                 nruns = classify_tiles(t, cxl, cxr, cy0, cy1, c_lo, c_hi, ty * ntx, t_edge,
                                        t_z, t_zlim, st, zbuf, tb, runs, skip, cover_blocks,
-                                       not edge_mode, work)
+                                       not edge_mode, zpass, work)
             else:
                 runs[0, 0] = cxl
                 runs[0, 1] = cxr
@@ -296,7 +307,7 @@ def _triangle_rows(
         if nruns == 0 or (stored and sl > sr):
             continue  # every tile of this tile row skipped, or an empty row
         for r in range(nruns):
-            full = runs[r, 2] == TILE_FULL
+            full = runs[r, 2] >= TILE_FULL  # TILE_FULL or TILE_ZPASS
             if full or edge_mode:
                 xl = runs[r, 0]
                 xr = runs[r, 1]
@@ -326,7 +337,10 @@ def _triangle_rows(
             # costs two (atomic, out-of-line) reference-count updates, several per
             # row of a small triangle, and the threads share the counts' cache line.
             uy = np.uintp(y)
-            if mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
+            if runs[r, 2] == TILE_ZPASS:
+                z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
+                             cbuf, zbuf, sten, vector_pack)
+            elif mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
                     and zmax <= 2147483647:
                 # The shadow-volume pass with z rounded through int32 (vectorizes;
                 # the same values as round_z, kernels/fragment.py round_z_i32).
@@ -620,7 +634,7 @@ def render_bands(
     states, derived, tables,
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
-    small_path, work, tex,
+    small_path, block_update, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -671,6 +685,9 @@ def render_bands(
         Triangles at most ``kernels.small.NARROW`` pixels wide whose tiles are not
         classified run in one pass over their box (:mod:`.small`; a switch, on by
         default; same planes).
+    block_update : bool
+        With ``cover_blocks``: rows of fully covered tiles where the z test is known
+        to pass run without it (:mod:`.blocks`; a switch, on by default).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -711,7 +728,8 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, tight_tiles, step_spans, vector_pack, small_path, tb, runs,
+                    cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
+                    tb, runs,
                     spans, bw,
                     tex,
                 )

@@ -89,7 +89,7 @@ def _scene(rng, n):
 
 
 def _render(cmds, nthreads, **switches):
-    keep = threads.get_threads()
+    keep = threads._override  # None: follow numba.set_num_threads (tests/kernels/test_threads.py)
     threads.set_threads(nthreads)
     try:
         fb = kernel_framebuffer(W, H, double=True, zbits=24, stencil=8)
