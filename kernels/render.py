@@ -77,6 +77,7 @@ from .fragment import (
     wrap_z24,
     write_z,
 )
+from .lit import LIT_MIN_SPAN, lit_span
 from .options import callee, inline_ir, jit
 from .raster import covers, row_span
 from .small import NARROW as SMALL_NARROW
@@ -174,7 +175,8 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tight_tiles, step_spans, vector_pack, small_path, block_update, tb, runs, spans, work, tex,
+    tight_tiles, step_spans, vector_pack, small_path, block_update, lit_spans, tb, runs, spans,
+    work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -359,7 +361,7 @@ def _triangle_rows(
                     sten[uy, ux] = min(max(sv, 0), smax)
             elif mode == MODE_COLOUR:
                 _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
-                             cbuf, zbuf, sten, front, back, tab, vector_pack)
+                             cbuf, zbuf, sten, front, back, tab, vector_pack, lit_spans)
             elif mode == MODE_ZSTENCIL:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
@@ -416,11 +418,13 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colo
 
 @inline_ir
 def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
-                 sten, front, back, tab, vector_pack):
+                 sten, front, back, tab, vector_pack, lit_spans):
     """MODE_COLOUR: shaded span of row ``uy`` with read-only stencil, optional z,
     simple blend, into ``cbuf`` (the one colour buffer the state draws).
     ``vector_pack``: the stencil-tested loop packs colour through
-    :func:`pack_rgba_i32` (same words, a conversion AVX2 vectorizes)."""
+    :func:`pack_rgba_i32` (same words, a conversion AVX2 vectorizes);
+    ``lit_spans`` (with ``vector_pack``): spans of at least ``LIT_MIN_SPAN`` pixels
+    of the replace and ONE+ONE passes run :func:`.lit.lit_span`."""
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     lt, eq, gt = cmp_bits(st[S_ZFUNC])
@@ -442,6 +446,13 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)
+        elif (lit_spans and vector_pack and xr - xl + 1 >= LIT_MIN_SPAN
+              and zmin >= -2147483648 and zmax <= 2147483647):
+            # The same loop compiled on its own (kernels/lit.py: inside this kernel
+            # its invariants are spilled and reloaded on every pixel).
+            lit_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
+                     adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
+                     add, wm, keep, cbuf, zbuf, sten)
         elif (dv[D_STENCIL] != 0 and vector_pack and zmin >= -2147483648
               and zmax <= 2147483647):
             # Heidmann's lit pass (stencil test, ONE+ONE): the switch is tested once
@@ -634,7 +645,7 @@ def render_bands(
     states, derived, tables,
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
-    small_path, block_update, work, tex,
+    small_path, block_update, lit_spans, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -688,6 +699,10 @@ def render_bands(
     block_update : bool
         With ``cover_blocks``: rows of fully covered tiles where the z test is known
         to pass run without it (:mod:`.blocks`; a switch, on by default).
+    lit_spans : bool
+        With ``vector_pack``: long spans of the lit and ambient passes (z test,
+        replace or ONE+ONE) run the out-of-line loop of :mod:`.lit` (a switch, on by
+        default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -729,7 +744,7 @@ def render_bands(
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
                     cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
-                    tb, runs,
+                    lit_spans, tb, runs,
                     spans, bw,
                     tex,
                 )

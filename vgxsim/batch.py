@@ -141,6 +141,11 @@ class CommandBatch:
         the z test passes for the whole triangle there run their rows without the
         per-fragment z compare (vgxsim/kernels/blocks.py; the z+stencil, z-only and
         lit passes); on by default, a switch that changes no pixel.
+    lit_spans : bool
+        With ``vector_pack``: row spans of at least 16 pixels of the lit and ambient
+        passes (z test, replace or ONE+ONE blend) run a span loop compiled on its
+        own (vgxsim/kernels/lit.py), which LLVM keeps in registers; on by default,
+        the same planes either way.
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy
@@ -162,6 +167,7 @@ class CommandBatch:
     vector_pack = True
     small_path = True
     block_update = True
+    lit_spans = True
     band_records = True
 
     def __init__(self, framebuffer: Framebuffer):
@@ -626,7 +632,7 @@ class CommandBatch:
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
-            self.vector_pack, self.small_path, self.block_update, work,
+            self.vector_pack, self.small_path, self.block_update, self.lit_spans, work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
