@@ -1,6 +1,8 @@
 """A CommandBatch switch on and off, alternating, on the fill workloads.
 
-    python bench/fill_ab.py SWITCH [--rounds N] [--threads T] [--only NAME ...]
+    python bench/fill_ab.py SWITCH[,SWITCH...] [--rounds N] [--threads T] [--only NAME ...]
+
+(several switches: all on against all off)
 
 Workloads: the full-screen z+stencil pass and lit pass of bench/scenes.py (one run
 queues and flushes the whole batch; units: fragments a rasterizer without work
@@ -53,18 +55,25 @@ WORKLOADS = {
 }
 
 
+def _set(names, on: bool) -> None:
+    for sw in names:
+        setattr(CommandBatch, sw, on)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("switch", help="a CommandBatch class attribute (bool)")
+    ap.add_argument("switch", help="CommandBatch class attributes (bool), comma-separated")
     ap.add_argument("--rounds", type=int, default=9)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--only", nargs="*", default=list(WORKLOADS))
     args = ap.parse_args(argv)
-    if not isinstance(getattr(CommandBatch, args.switch, None), bool):
-        ap.error(f"CommandBatch has no switch {args.switch!r}")
+    names = args.switch.split(",")
+    for sw in names:
+        if not isinstance(getattr(CommandBatch, sw, None), bool):
+            ap.error(f"CommandBatch has no switch {sw!r}")
     numba.set_num_threads(min(args.threads, numba.config.NUMBA_NUM_THREADS))
-    keep = getattr(CommandBatch, args.switch)
-    print(f"CommandBatch.{args.switch} on / off, {args.rounds} alternating rounds, "
+    keep = {sw: getattr(CommandBatch, sw) for sw in names}
+    print(f"CommandBatch.{'+'.join(names)} on / off, {args.rounds} alternating rounds, "
           f"{args.threads} thread(s), medians of flush CPU time (ms)")
     with dense_scene.flush_cpu_time() as spent:
         try:
@@ -73,7 +82,7 @@ def main(argv=None) -> int:
                 samples = {True: [], False: []}
                 for r in range(args.rounds + 1):
                     for on in ((True, False) if r % 2 else (False, True)):
-                        setattr(CommandBatch, args.switch, on)
+                        _set(names, on)
                         spent[0] = 0.0
                         run()
                         if r:
@@ -88,13 +97,14 @@ def main(argv=None) -> int:
                 batch = getattr(run, "batch", None)
                 if batch is not None:
                     for on in (True, False):
-                        setattr(CommandBatch, args.switch, on)
+                        _set(names, on)
                         batch.reset_counters()
                         run()
                         line += f"\n    {'on ' if on else 'off'} {batch.work()}"
                 print(line, flush=True)
         finally:
-            setattr(CommandBatch, args.switch, keep)
+            for sw, v in keep.items():
+                setattr(CommandBatch, sw, v)
     return 0
 
 
