@@ -20,7 +20,8 @@ Everything is measured side by side in one run and medians are quoted:
 * the work counters (CommandBatch.work()) of each workload, and the time of the
   shadow frames with exact work skipping switched off, measured beside;
 * the 10-pixel triangles and the dense scene with the raster switches (spans stepped
-  row to row, records copied into band order) on and off, alternating.
+  row to row, records copied into band order, int32 packing, the small-triangle path,
+  the block update) on and off, alternating.
 """
 
 from __future__ import annotations
@@ -122,13 +123,16 @@ def small_triangle_split(rounds: int) -> dict:
     return out
 
 
-RASTER_SWITCHES = ("step_spans", "band_records", "vector_pack")  # CommandBatch, issue 7
+RASTER_SWITCHES = ("step_spans", "band_records", "vector_pack", "small_path",
+                   "block_update", "lit_spans")  # CommandBatch, issue 7
 
 
 def raster_switches(rounds: int) -> dict:
     """The 10-pixel triangles and the dense scene with the raster switches
     (``RASTER_SWITCHES``: spans stepped row to row, records copied into band order,
-    int32 conversions in the lit and z+stencil loops)
+    int32 conversions in the lit and z+stencil loops, the small-triangle path, the
+    block update of z-passed tiles, the out-of-line lit span loop; bench/fill_ab.py
+    A/Bs one switch, or a few, at a time)
     all on and all off, alternating round by round on 1 and 2 threads: wall time and
     the process CPU time spent in CommandBatch.flush (the raster).
 

@@ -60,6 +60,7 @@ from vgxsim.state.codes import (
     WORK_STENCIL_WRITES,
 )
 
+from .blocks import z_passed_row
 from .fragment import (
     add_sat,
     blend_sa_msa,
@@ -76,6 +77,7 @@ from .fragment import (
     wrap_z24,
     write_z,
 )
+from .lit import LIT_MIN_SPAN, lit_span
 from .options import callee, inline_ir, jit
 from .raster import covers, row_span
 from .small import NARROW as SMALL_NARROW
@@ -94,6 +96,7 @@ from .tiles import (
     TILE_ROW_MIN_PIXELS,
     TILE_SHIFT,
     TILE_W,
+    TILE_ZPASS,
     classify_tiles,
     note_z_cleared,
     note_z_written,
@@ -172,7 +175,8 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tight_tiles, step_spans, vector_pack, small_path, tb, runs, spans, work, tex,
+    tight_tiles, step_spans, vector_pack, small_path, block_update, lit_spans, tb, runs, spans,
+    work, tex,
 ):
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
@@ -181,6 +185,15 @@ def _triangle_rows(
     if xlo > xhi or ylo > yhi:
         return
     skip = skip_tiles and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
+    # The block update (kernels/blocks.py): the passes with a z-passed row loop.  Only
+    # where z failure is a no-op: those passes read tile bounds anyway (skip_tiles), so
+    # the switch changes no bound, hence no skipped tile nor any other work counter.
+    zpass = (block_update and cover_blocks and dv[D_ZTEST] != 0 and dv[D_ZFAIL_NOOP] != 0
+             and not edge_mode and not general_only
+             and (dv[D_MODE] == MODE_ZSTENCIL_ADD or dv[D_MODE] == MODE_ZSTENCIL
+                  or dv[D_MODE] == MODE_ZONLY
+                  or (dv[D_MODE] == MODE_COLOUR and (dv[D_CBLEND] == CBLEND_REPLACE
+                                                     or dv[D_CBLEND] == CBLEND_ADD))))
     step = step_spans and not edge_mode
     classify = (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
     if (small_path and not classify and xhi - xlo < SMALL_NARROW and not general_only
@@ -287,7 +300,7 @@ def _triangle_rows(
                                                          else TILE_MIN_PIXELS):
                 nruns = classify_tiles(t, cxl, cxr, cy0, cy1, c_lo, c_hi, ty * ntx, t_edge,
                                        t_z, t_zlim, st, zbuf, tb, runs, skip, cover_blocks,
-                                       not edge_mode, work)
+                                       not edge_mode, zpass, work)
             else:
                 runs[0, 0] = cxl
                 runs[0, 1] = cxr
@@ -296,7 +309,7 @@ def _triangle_rows(
         if nruns == 0 or (stored and sl > sr):
             continue  # every tile of this tile row skipped, or an empty row
         for r in range(nruns):
-            full = runs[r, 2] == TILE_FULL
+            full = runs[r, 2] >= TILE_FULL  # TILE_FULL or TILE_ZPASS
             if full or edge_mode:
                 xl = runs[r, 0]
                 xr = runs[r, 1]
@@ -326,7 +339,10 @@ def _triangle_rows(
             # costs two (atomic, out-of-line) reference-count updates, several per
             # row of a small triangle, and the threads share the counts' cache line.
             uy = np.uintp(y)
-            if mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
+            if runs[r, 2] == TILE_ZPASS:
+                z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
+                             cbuf, zbuf, sten, vector_pack)
+            elif mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
                     and zmax <= 2147483647:
                 # The shadow-volume pass with z rounded through int32 (vectorizes;
                 # the same values as round_z, kernels/fragment.py round_z_i32).
@@ -345,7 +361,7 @@ def _triangle_rows(
                     sten[uy, ux] = min(max(sv, 0), smax)
             elif mode == MODE_COLOUR:
                 _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
-                             cbuf, zbuf, sten, front, back, tab, vector_pack)
+                             cbuf, zbuf, sten, front, back, tab, vector_pack, lit_spans)
             elif mode == MODE_ZSTENCIL:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
@@ -402,11 +418,13 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colo
 
 @inline_ir
 def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
-                 sten, front, back, tab, vector_pack):
+                 sten, front, back, tab, vector_pack, lit_spans):
     """MODE_COLOUR: shaded span of row ``uy`` with read-only stencil, optional z,
     simple blend, into ``cbuf`` (the one colour buffer the state draws).
     ``vector_pack``: the stencil-tested loop packs colour through
-    :func:`pack_rgba_i32` (same words, a conversion AVX2 vectorizes)."""
+    :func:`pack_rgba_i32` (same words, a conversion AVX2 vectorizes);
+    ``lit_spans`` (with ``vector_pack``): spans of at least ``LIT_MIN_SPAN`` pixels
+    of the replace and ONE+ONE passes run :func:`.lit.lit_span`."""
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     lt, eq, gt = cmp_bits(st[S_ZFUNC])
@@ -428,6 +446,13 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)
+        elif (lit_spans and vector_pack and xr - xl + 1 >= LIT_MIN_SPAN
+              and zmin >= -2147483648 and zmax <= 2147483647):
+            # The same loop compiled on its own (kernels/lit.py: inside this kernel
+            # its invariants are spilled and reloaded on every pixel).
+            lit_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
+                     adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
+                     add, wm, keep, cbuf, zbuf, sten)
         elif (dv[D_STENCIL] != 0 and vector_pack and zmin >= -2147483648
               and zmax <= 2147483647):
             # Heidmann's lit pass (stencil test, ONE+ONE): the switch is tested once
@@ -620,7 +645,7 @@ def render_bands(
     states, derived, tables,
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
-    small_path, work, tex,
+    small_path, block_update, lit_spans, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -671,6 +696,13 @@ def render_bands(
         Triangles at most ``kernels.small.NARROW`` pixels wide whose tiles are not
         classified run in one pass over their box (:mod:`.small`; a switch, on by
         default; same planes).
+    block_update : bool
+        With ``cover_blocks``: rows of fully covered tiles where the z test is known
+        to pass run without it (:mod:`.blocks`; a switch, on by default).
+    lit_spans : bool
+        With ``vector_pack``: long spans of the lit and ambient passes (z test,
+        replace or ONE+ONE) run the out-of-line loop of :mod:`.lit` (a switch, on by
+        default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -711,7 +743,8 @@ def render_bands(
                     ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, tight_tiles, step_spans, vector_pack, small_path, tb, runs,
+                    cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
+                    lit_spans, tb, runs,
                     spans, bw,
                     tex,
                 )

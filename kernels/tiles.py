@@ -15,6 +15,12 @@ gets a class:
 * ``TILE_FULL``: the four corners of the tile's rectangle are inside all three edges,
   so (the triangle being convex) every pixel is: rows need no span solve and the
   edge-function rasterizer no per-pixel tests.
+* ``TILE_ZPASS``: fully covered, and the triangle's depths over the tile pass the z
+  test against every depth in ``[lo, hi]`` (the "block update": asked for with
+  ``zpass``): rows run a loop without the per-fragment z compare
+  (kernels/blocks.py), the stencil update, colour and z write of a passing fragment
+  only.  Heidmann's volume faces in front of the scene and the lit pass's visible
+  faces take it.
 * ``TILE_PARTIAL``: everything else, rasterized as before.
 
 Exactness (docs/numeric_model.md, "Work skipping"): a fragment's depth is
@@ -33,6 +39,7 @@ from vgxsim.state.codes import (
     CMP_EQUAL,
     S_ZFUNC,
     WORK_BLOCKS_COVERED,
+    WORK_BLOCKS_Z_PASSED,
     WORK_TILES_SCANNED,
     WORK_TILES_SKIPPED,
     Z24_MASK,
@@ -46,7 +53,7 @@ TILE_SHIFT = 6
 TILE_W = 1 << TILE_SHIFT  # columns per tile
 TILE_H_SHIFT = 5
 TILE_H = 1 << TILE_H_SHIFT  # rows per tile (bands are at least this tall, batch.py)
-TILE_SKIP, TILE_PARTIAL, TILE_FULL = 0, 1, 2
+TILE_SKIP, TILE_PARTIAL, TILE_FULL, TILE_ZPASS = 0, 1, 2, 3  # ZPASS: full, z passes too
 # Triangles with fewer pixels than this in a band are not classified tile by tile:
 # the corner tests would cost more than they save (the result is the same).
 TILE_MIN_PIXELS = 512
@@ -110,9 +117,22 @@ def z_fails_everywhere(zfunc, zlo, zhi, blo, bhi):
     return not ((lt and can_lt) or (eq and can_eq) or (gt and can_gt))
 
 
+@inline
+def z_passes_everywhere(zfunc, zlo, zhi, blo, bhi):
+    """Every fragment depth in ``[zlo, zhi]`` passes ``zfunc`` against every stored
+    depth in ``[blo, bhi]``: each outcome (less, equal, greater) that can occur is
+    one the ZF_* code accepts (the outcomes that can occur are over-estimated from
+    the intervals, which errs on the side of testing)."""
+    lt, eq, gt = cmp_bits(zfunc)
+    can_lt = zlo < bhi
+    can_eq = zlo <= bhi and zhi >= blo
+    can_gt = zhi > blo
+    return (lt or not can_lt) and (eq or not can_eq) and (gt or not can_gt)
+
+
 @callee
 def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim, st, zbuf,
-                   tb, runs, skip, cover, merge, work):
+                   tb, runs, skip, cover, merge, zpass, work):
     """Classify the tiles of triangle ``t``'s rectangle in one tile row of a band;
     write the runs of adjacent non-skipped tiles of one class into ``runs``.
 
@@ -135,14 +155,19 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
     tb : ndarray, shape (n, TB_SIZE), int64
         The band's tile bounds (TB_*), filled in on first use.
     runs : ndarray, shape (ntiles, 3), int64
-        Output: ``(x first, x last, TILE_FULL or TILE_PARTIAL)`` per run.
+        Output: ``(x first, x last, TILE_ZPASS, TILE_FULL or TILE_PARTIAL)`` per run.
     skip, cover : bool
         Whether to test depth bounds (the caller has checked that the z test is on
         and z failure is a no-op) and whether to test full coverage.
     merge : bool
         Merge adjacent full and partial tiles into one (partial) run: for the span
         rasterizer, which solves each row once; the edge-function rasterizer keeps
-        full runs apart to leave out their per-pixel tests.
+        full runs apart to leave out their per-pixel tests.  Z-passed runs are
+        never merged with the other classes (they run another loop).
+    zpass : bool
+        Also test whether fully covered tiles pass the z test everywhere
+        (``TILE_ZPASS``; the caller has checked that the z test is on, that ``cover``
+        is set and that the state has a z-passed row loop).
     work : ndarray, shape (WORK_SIZE,), int64
         Work counters of this band.
 
@@ -155,8 +180,9 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
     z0, x0, y0, dzdx, dzdy = t_z[t, 0], t_z[t, 1], t_z[t, 2], t_z[t, 3], t_z[t, 4]
     zmin = t_zlim[t, 0]
     zmax = t_zlim[t, 1]
-    skip = skip and (abs(z0) < _PLANE_LIMIT and abs(dzdx) < _PLANE_LIMIT
-                     and abs(dzdy) < _PLANE_LIMIT)
+    plane_ok = (abs(z0) < _PLANE_LIMIT and abs(dzdx) < _PLANE_LIMIT
+                and abs(dzdy) < _PLANE_LIMIT)
+    bounds = (skip or zpass) and plane_ok
     zfunc = st[S_ZFUNC]
     tile_px = TILE_W * (y_hi - y_lo + 1)
     nruns = 0
@@ -164,7 +190,8 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
         cx0 = max(xlo, tx << TILE_SHIFT)
         cx1 = min(xhi, (tx << TILE_SHIFT) + TILE_W - 1)
         cls = TILE_PARTIAL
-        if skip:
+        passes = False
+        if bounds:
             a = _plane_at(z0, dzdx, dzdy, x0, y0, cx0, ylo)
             b = _plane_at(z0, dzdx, dzdy, x0, y0, cx1, ylo)
             c = _plane_at(z0, dzdx, dzdy, x0, y0, cx0, yhi)
@@ -179,8 +206,9 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
                 # round_z is monotone: rounding the extremes gives the extremes.
                 rlo = round_z(flo, zmin, zmax)
                 rhi = round_z(fhi, zmin, zmax)
-                fails = z_fails_everywhere(zfunc, rlo, rhi, tb[i, TB_LO], tb[i, TB_HI])
-                if not fails and tb[i, TB_VALID] == TB_LOOSE:
+                fails = skip and z_fails_everywhere(zfunc, rlo, rhi, tb[i, TB_LO],
+                                                    tb[i, TB_HI])
+                if skip and not fails and tb[i, TB_VALID] == TB_LOOSE:
                     # Loose bounds (widened by z writes) may be what keeps the tile;
                     # scan again once the faces they kept have paid for a scan.
                     tb[i, TB_DEBT] += (cx1 - cx0 + 1) * (yhi - ylo + 1)
@@ -192,18 +220,24 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
                 if fails:
                     cls = TILE_SKIP
                     work[WORK_TILES_SKIPPED] += 1
+                elif zpass:
+                    passes = z_passes_everywhere(zfunc, rlo, rhi, tb[i, TB_LO], tb[i, TB_HI])
         if cls == TILE_PARTIAL and cover and covers(edge, cx0, ylo) and covers(
                 edge, cx1, ylo) and covers(edge, cx0, yhi) and covers(edge, cx1, yhi):
             cls = TILE_FULL
             work[WORK_BLOCKS_COVERED] += 1
+            if passes:
+                cls = TILE_ZPASS
+                work[WORK_BLOCKS_Z_PASSED] += 1
         if cls == TILE_SKIP:
             continue
-        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and (
-                merge or runs[nruns - 1, 2] == cls):
+        prev = runs[nruns - 1, 2] if nruns > 0 else TILE_SKIP
+        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and (prev == cls or (
+                merge and prev != TILE_ZPASS and cls != TILE_ZPASS)):
             # Span rows solve their edges once per row anyway: one long run (a long
             # vectorized loop) beats a run per class; it is full only if all tiles are.
             runs[nruns - 1, 1] = cx1
-            if cls != runs[nruns - 1, 2]:
+            if cls != prev:
                 runs[nruns - 1, 2] = TILE_PARTIAL
         else:
             runs[nruns, 0] = cx0

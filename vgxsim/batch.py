@@ -32,6 +32,7 @@ from vgxsim.state.codes import (
     S_DRAW_FRONT,
     S_TEXTURE,
     WORK_BLOCKS_COVERED,
+    WORK_BLOCKS_Z_PASSED,
     WORK_FRAGMENTS,
     WORK_SIZE,
     WORK_STENCIL_WRITES,
@@ -49,7 +50,7 @@ __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL", "WORK_NAM
 WORK_NAMES = tuple(name for _, name in sorted([
     (WORK_FRAGMENTS, "fragments"), (WORK_TILES_SKIPPED, "tiles_skipped"),
     (WORK_BLOCKS_COVERED, "blocks_covered"), (WORK_STENCIL_WRITES, "stencil_writes"),
-    (WORK_TILES_SCANNED, "tiles_scanned")]))
+    (WORK_TILES_SCANNED, "tiles_scanned"), (WORK_BLOCKS_Z_PASSED, "blocks_z_passed")]))
 
 # Bands are 2**shift rows, 32 to 256.  Tall bands keep the triangle records a band
 # reads dense in memory (many small triangles are latency-bound on those reads);
@@ -136,6 +137,16 @@ class CommandBatch:
         spans and the span loops, whose per-row set-up costs more than a small
         triangle's row of pixels; on by default, the same planes either way (a
         class attribute like the above).
+    block_update : bool
+        With ``cover_blocks``: fully covered tiles whose depth bounds prove that
+        the z test passes for the whole triangle there run their rows without the
+        per-fragment z compare (vgxsim/kernels/blocks.py; the z+stencil, z-only and
+        lit passes); on by default, a switch that changes no pixel.
+    lit_spans : bool
+        With ``vector_pack``: row spans of at least 16 pixels of the lit and ambient
+        passes (z test, replace or ONE+ONE blend) run a span loop compiled on its
+        own (vgxsim/kernels/lit.py), which LLVM keeps in registers; on by default,
+        the same planes either way.
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy
@@ -152,8 +163,8 @@ class CommandBatch:
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
         covered without edge tests, fragments of passes that may write stencil,
-        tiles whose depth bounds were read from the z plane.
-        :meth:`work` gives them by name.
+        tiles whose depth bounds were read from the z plane, of the covered tiles
+        those run without z tests.  :meth:`work` gives them by name.
     """
 
     skip_tiles = True
@@ -162,6 +173,8 @@ class CommandBatch:
     step_spans = True
     vector_pack = True
     small_path = True
+    block_update = True
+    lit_spans = True
     band_records = True
     scatter_bins = True
 
@@ -698,7 +711,7 @@ class CommandBatch:
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
-            self.vector_pack, self.small_path, work,
+            self.vector_pack, self.small_path, self.block_update, self.lit_spans, work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)

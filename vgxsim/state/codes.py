@@ -120,4 +120,5 @@ WORK_TILES_SKIPPED = 1  # (triangle, tile) pairs decided by the tile's depth bou
 WORK_BLOCKS_COVERED = 2  # tile rows of a triangle run without edge tests
 WORK_STENCIL_WRITES = 3  # fragments whose stencil value the pass may change
 WORK_TILES_SCANNED = 4  # tiles whose depth bounds were found by reading the z plane
-WORK_SIZE = 5
+WORK_BLOCKS_Z_PASSED = 5  # of those covered, tile rows run without z tests (z proven to pass)
+WORK_SIZE = 6
