@@ -14,6 +14,7 @@ import sys
 import pytest
 
 from vgxsim import coldstart
+from vgxsim.geometry import pipeline
 
 
 def _cached_kernels(cache: str) -> set[str]:
@@ -34,8 +35,12 @@ def test_helper_caches_the_geometry_kernels_and_not_the_band_kernel(tmp_path):
     assert proc.returncode == 0, proc.stderr[-2000:]
     cached = _cached_kernels(str(tmp_path))
     # Context.draw_arrays and the IRIS GL calls: transform, clip, project, set-up;
-    # the GL calls also decode a command stream; the tetrahedron's adjacency.
-    for name in ("transform.transform_points", "clip.clip_triangles", "clip.project_snap",
+    # the GL calls also decode a command stream; the tetrahedron's adjacency.  With
+    # the fused front end (on by default) array-drawn triangles are transformed by
+    # its one vertex pass instead of transform_points.
+    transform = ("front.front_vertices" if pipeline.FUSED_FRONT
+                 else "transform.transform_points")
+    for name in (transform, "clip.clip_triangles", "clip.project_snap",
                  "setup.setup_triangles_states", "decode.decode_stream",
                  "adjacency.edge_adjacency", "adjacency.newell_normals"):
         assert name in cached, (name, sorted(cached))
