@@ -98,3 +98,70 @@ def test_no_gl_call_reads_a_window_attribute_through_a_getattr_default():
              for i, line in enumerate(p.read_text().splitlines(), 1)
              if re.search(r"getattr\(ctx\b[^)]*,[^)]*,", line)]
     assert found == []
+
+
+def _pipeline_and_stream_sources() -> list[pathlib.Path]:
+    root = pathlib.Path(gl.__file__).parent.parent
+    return [p for sub in ("pipeline", "stream") for p in sorted((root / sub).glob("*.py"))]
+
+
+def test_no_pipeline_or_stream_code_finds_a_default_through_getattr():
+    # (Three arguments without nested calls: getattr(obj, name, default).)
+    found = [f"{p.parent.name}/{p.name}:{i}" for p in _pipeline_and_stream_sources()
+             for i, line in enumerate(p.read_text().splitlines(), 1)
+             if re.search(r"getattr\([^()]*,[^()]*,", line)]
+    assert found == []
+
+
+def test_pipeline_and_stream_modules_keep_no_mutable_state_of_their_own():
+    """Module-level dicts, lists and sets are process state outside the session and
+    its windows (issue 6, item 2): the memos live on a window's Context, stream or
+    state table, and the tables of names are read-only mappings."""
+    import ast
+
+    mutable_calls = {"dict", "list", "set", "defaultdict", "OrderedDict", "WeakKeyDictionary",
+                     "WeakValueDictionary", "deque", "count"}
+    found = []
+    for p in _pipeline_and_stream_sources():
+        for node in ast.parse(p.read_text()).body:
+            if not isinstance(node, (ast.Assign, ast.AnnAssign)) or node.value is None:
+                continue
+            names = [t.id for t in (node.targets if isinstance(node, ast.Assign)
+                                    else [node.target]) if isinstance(t, ast.Name)]
+            if names == ["__all__"]:
+                continue
+            v = node.value
+            func = v.func if isinstance(v, ast.Call) else None
+            fname = getattr(func, "id", getattr(func, "attr", None))
+            if isinstance(v, (ast.Dict, ast.List, ast.Set, ast.DictComp, ast.ListComp,
+                              ast.SetComp)) or fname in mutable_calls:
+                found.append(f"{p.parent.name}/{p.name}:{node.lineno} {names}")
+    assert found == []
+
+
+def test_flush_memos_and_lighting_tokens_belong_to_each_window():
+    a, b = Context(W, H), Context(W, H)
+    assert a.row_memo is not b.row_memo
+    assert a.stream.light_memo is not b.stream.light_memo
+    assert a.states.last_token == b.states.last_token == 0
+    # A token a table hands out is its own count: a second window's first binding
+    # takes the same number, and no table's count goes back.
+    ta, tb = a.states.lighting_token(a), b.states.lighting_token(b)
+    assert ta == tb == 1
+    a.states.clear()
+    a.lighting_serial += 1
+    a.bound["material"] = 1  # another binding: a new token, never an old one
+    assert a.states.lighting_token(a) == 2
+
+
+def test_clears_and_memo_entries_are_named_records(ctx):
+    gl.RGBmode()
+    gl.gconfig()
+    gl.cpack(0x00FF00FF)
+    gl.clear()
+    (c,) = ctx.stream.clears
+    assert (c.planes, c.colour) == (ctx.stream.clears[0][0], 0x00FF00FF)
+    assert c.state is not None and c.z == c[2] and c.stencil == c[3]
+    gl.bgnpolygon()
+    gl.endpolygon()
+    assert all(hasattr(m, "record") for m in ctx.stream.state_memo.values())

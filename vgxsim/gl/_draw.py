@@ -42,7 +42,7 @@ import numpy as np
 
 from vgxsim.pipeline.decode import drain
 from vgxsim.stream.opcodes import BGN, END, KIND_OF, STATE, SWAP, SYNC, T, V
-from vgxsim.stream.recorder import MAX_STREAM_OPS
+from vgxsim.stream.recorder import MAX_STREAM_OPS, StateMemo
 
 from . import _core
 from ._core import (
@@ -162,10 +162,10 @@ def _restate_changed(ctx, st) -> None:
         # faces: stencil() before each): the record interned for this snapshot under
         # the same other parts, if the table still holds it (FAST_CALLS).
         hit = st.state_memo.get(id(snap))
-        if hit is not None and hit[0] is snap:
+        if hit is not None and hit.snapshot is snap:
             recs = ctx.states.records
-            if hit[1] < len(recs) and recs[hit[1]] is hit[2]:
-                idx = hit[1]
+            if hit.index < len(recs) and recs[hit.index] is hit.record:
+                idx = hit.index
     else:
         st.state_memo.clear()  # other parts changed: the records found so far differ
     if idx < 0:
@@ -179,7 +179,7 @@ def _restate_changed(ctx, st) -> None:
         if session.imm is ctx:
             if len(st.state_memo) >= 256:
                 st.state_memo.clear()
-            st.state_memo[id(snap)] = (snap, idx, ctx.states.records[idx])
+            st.state_memo[id(snap)] = StateMemo(snap, idx, ctx.states.records[idx])
     st.raster = regs._snapshot
     st.mvp = ctx.matrices._mvp
     st.depth = ctx.depth_range

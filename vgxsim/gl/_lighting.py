@@ -21,6 +21,7 @@ import numpy as np
 
 from vgxsim import GL
 from vgxsim.lighting import LightingError, light_to_eye
+from vgxsim.stream.recorder import LightMemo
 from vgxsim.tokens import Token
 
 from . import _core
@@ -204,13 +205,13 @@ def _bind_light(ctx, slot: int, index: int, light) -> None:
     memo = ctx.stream.light_memo
     k = slot << 16 | index  # (index <= _SHORT_MAX)
     hit = memo.get(k)
-    if hit is not None and hit[0] is light and hit[1] is mv:
-        pair = hit[2]
+    if hit is not None and hit.light is light and hit.modelview is mv:
+        pair = hit.entry
     else:
         pair = (index, light_to_eye(light, mv))
         if len(memo) >= 256:
             memo.clear()
-        memo[k] = (light, mv, pair)
+        memo[k] = LightMemo(light, mv, pair)
     ctx.lighting_serial += 1
     ctx.bound["lights"][slot] = pair
 

@@ -25,6 +25,7 @@ from vgxsim.pipeline import layers
 from vgxsim.pipeline.decode import drain
 from vgxsim.pipeline.draw import commit_triangles
 from vgxsim.pipeline.draw import draw_arrays as pipeline_draw_arrays
+from vgxsim.pipeline.flush_front import RowMemo
 from vgxsim.pipeline.records import DrawState, StateTable
 from vgxsim.state import colormap
 from vgxsim.state.colormap import default_colormap
@@ -32,7 +33,7 @@ from vgxsim.state.matrices import MatrixState
 from vgxsim.state.planes import ZMAX, ZMIN, Framebuffer, PlaneConfig, unpack_rgba
 from vgxsim.state.registers import RasterRegisters
 from vgxsim.stream.opcodes import CLEAR as CLEAR_OP
-from vgxsim.stream.recorder import MAX_STREAM_OPS, CommandStream
+from vgxsim.stream.recorder import MAX_STREAM_OPS, Clear, CommandStream
 
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
     "polygon", "tmesh", "qstrip", "line", "closedline", "point")
@@ -122,6 +123,16 @@ class Context:
         # pick(3G)/gselect(3G) mode (gl/_pick.py): a callable that hit-tests each
         # primitive in clip space instead of drawing it; None when drawing.
         self.select_hook = None
+        # The flush pass's lighting rows (vgxsim.pipeline.flush_front.RowMemo).
+        self.row_memo = RowMemo()
+        # What configure() replaces: none before the first one.  The framebuffers
+        # (vgxsim.pipeline.layers: the normal planes and overlay, underlay, pop-up and
+        # cursor planes) and the one selected; zdraw(3G)'s batch, when on.
+        self.plane_sets: dict = {}
+        self.planes_selected = layers.NORMAL
+        self.zdraw_batch = None
+        self._batch: CommandBatch | None = None
+        self.raster: RasterRegisters | None = None
         self.configure(self.pending)
 
     # -- configuration ----------------------------------------------------------------
@@ -133,20 +144,20 @@ class Context:
         (swritemask, the draw buffers) are reset.  The overlay and underlay planes are
         (re)allocated too (vgxsim.pipeline.layers); the draw mode is kept.
         """
-        selected = getattr(self, "planes_selected", layers.NORMAL)
+        selected = self.planes_selected
         if selected != layers.NORMAL:
             layers.select(self, layers.NORMAL)
-        if getattr(self, "zdraw_batch", None) is not None:
+        if self.zdraw_batch is not None:
             # zdraw(3G): "By default, and after each call to gconfig, zdraw is FALSE."
             layers.set_zdraw(self, False)
         self.zdraw_batch = None
-        if getattr(self, "_batch", None) is not None:
+        if self._batch is not None:
             self.batch.flush()
         self.config = config
         self.fb = Framebuffer(config)
         self._batch = make_batch(self.fb)  # the backend switch (vgxsim/backends)
         self.stream.forget()
-        old = getattr(self, "raster", None)
+        old = self.raster
         self.raster = RasterRegisters(config.width, config.height, config.double)
         if old is not None:
             keep = {k: getattr(old, k) for k in (
@@ -257,7 +268,7 @@ class Context:
             drain(self)
         st.ops.append(CLEAR_OP)
         st.ops.append(len(st.clears))
-        st.clears.append((planes, colour, z, stencil, self.raster.clear_state()))
+        st.clears.append(Clear(planes, colour, z, stencil, self.raster.clear_state()))
 
     def flush(self) -> None:
         """Render everything queued."""

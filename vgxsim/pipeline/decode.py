@@ -30,19 +30,25 @@ from vgxsim.stream.opcodes import (
     P_KIND,
     P_LMCOLOR_SET,
     P_STATE,
+    P_SWAP0,
+    P_SWAP1,
+    P_V0,
     P_V1,
     PMV,
     POINT,
     POLYGON,
+    PRIM_COLUMNS,
     QSTRIP,
     TMESH,
 )
+from vgxsim.stream.recorder import Clear
 
 from . import draw, flush_front
 from .draw import commit_triangles, defer_triangles, draw_arrays
 
 _TRIANGLES = np.zeros(16, bool)
 _TRIANGLES[[POLYGON, TMESH, QSTRIP, PMV]] = True
+_TRIANGLES.flags.writeable = False  # (a constant: which kinds are triangles)
 
 
 def drain(ctx) -> None:
@@ -78,25 +84,27 @@ def _lit(state, sent: np.ndarray) -> np.ndarray:
     return sent
 
 
-def _clear(ctx, planes: int, colour: int, z: int, stencil: int, rs) -> None:
+def _clear(ctx, c: Clear) -> None:
     """A CLEAR op: the triangles queued before it are drawn first."""
     commit_triangles(ctx)
-    ctx.raw_batch.add_clear(planes, colour, z, stencil, rs)
+    ctx.raw_batch.add_clear(c.planes, c.colour, c.z, c.stencil, c.state)
 
 
 def _select_prims(ctx, records, pos, prims, swaps, clears) -> None:
     """Pick/select mode: hand each primitive to the hit test in clip space (its own
     state's transform, which holds the pick matrix), drawing nothing (pick(3G)); a
     clear recorded before the mode began is still done."""
-    for kind, v0, v1, si, _lms, s0, s1 in prims[:, :7].tolist():
+    for r in prims[:, :PRIM_COLUMNS].tolist():
+        kind, v0, v1 = r[P_KIND], r[P_V0], r[P_V1]
         if kind == CLEAR_KIND:
-            _clear(ctx, *clears[s0])
+            _clear(ctx, clears[r[P_CLEAR]])
             continue
         if v1 == v0:
             continue
         name = "polygon" if kind in (POLYGON, PMV) else NAME_OF[kind]
-        ctx.select_hook(name, apply(pos[v0:v1], records[si].mvp), swaps[s0:s1].tolist(),
-                        None, records[si].user_planes)
+        rec = records[r[P_STATE]]
+        ctx.select_hook(name, apply(pos[v0:v1], rec.mvp), swaps[r[P_SWAP0]:r[P_SWAP1]].tolist(),
+                        None, rec.user_planes)
 
 
 def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears=()) -> None:
@@ -107,7 +115,7 @@ def _draw_prims(ctx, records, pos, col, nrm, sent, prims, swaps, tc=None, clears
         _select_prims(ctx, records, pos, prims, swaps, clears)
         return
     if draw.FLUSH_FRONT and tc is None and _plain_batch(ctx.raw_batch):
-        tab = flush_front.Tables(records)
+        tab = flush_front.Tables(records, ctx.row_memo)
         fast, nfast = fast_rows(prims, tab.code)
         if nfast == npr:
             commit_triangles(ctx)  # queued before this flush's rows
@@ -152,7 +160,7 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
     # row, the end of its last primitive's vertices, whether it is triangles and
     # whether all its primitives share the first one's record.
     stops = np.append(first[1:], npr)
-    heads = prims[first, :7].tolist()
+    heads = prims[first, :PRIM_COLUMNS].tolist()
     last_v1 = prims[stops - 1, P_V1].tolist()
     tri_l = tri[first].tolist()
     head_state = np.repeat(prims[first, P_STATE], stops - first)
@@ -163,9 +171,10 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
     lit_groups: list = []
     for g, (a, b) in enumerate(zip(starts, ends, strict=True)):
         head = heads[g]
-        kind, v0, v1, si, lms = head[0], head[1], last_v1[g], head[3], head[4]
+        kind, v0, v1 = head[P_KIND], head[P_V0], last_v1[g]
+        si, lms = head[P_STATE], head[P_LMCOLOR_SET]
         if kind == CLEAR_KIND:
-            jobs.append((_clear, (ctx, *clears[head[P_CLEAR]]), {}))
+            jobs.append((_clear, (ctx, clears[head[P_CLEAR]]), {}))
             continue
         if v1 == v0:
             continue  # bgn*/end* without vertices draws nothing
@@ -179,15 +188,15 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
                                        nrm[sl], lit), {"private": True}))
             continue
         if state.concave or b - a == 1:
-            for r in prims[a:b, :7].tolist():
-                if r[2] == r[1]:
+            for r in prims[a:b, :PRIM_COLUMNS].tolist():
+                if r[P_V1] == r[P_V0]:
                     continue
-                ps = slice(r[1], r[2])
-                st = records[r[3]]
-                name = "polygon" if r[0] in (POLYGON, PMV) else NAME_OF[r[0]]
+                ps = slice(r[P_V0], r[P_V1])
+                st = records[r[P_STATE]]
+                name = "polygon" if r[P_KIND] in (POLYGON, PMV) else NAME_OF[r[P_KIND]]
                 jobs.append((draw_arrays, (ctx, st, bool(lms), name, pos[ps], col[ps], nrm[ps],
                                            _lit(st, sent[ps])),
-                             {"swaps": swaps[r[5]:r[6]].tolist(), "private": True,
+                             {"swaps": swaps[r[P_SWAP0]:r[P_SWAP1]].tolist(), "private": True,
                               "texcoords": None if tc is None else tc[ps]}))
             continue
         tris, prov, tri_prim = _group_triangles(prims[a:b], v0, swaps)
@@ -204,7 +213,7 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
             kw["eye_normals"] = nrm[sl]
         if draw.BATCH_LIGHTING and cols is not None and normals is not None:
             kw["lit_rgba"] = len(lit_groups)  # filled in once all groups are known
-            lit_groups.append((state, bool(lms), pos[sl], normals, cols, lit))
+            lit_groups.append(draw.LitGroup(state, bool(lms), pos[sl], normals, cols, lit))
         jobs.append((defer_triangles, (ctx, state, bool(lms), pos[sl], cols, normals, lit,
                                        tris, prov, tri_states), kw))
     shaded = draw.shade_groups(lit_groups) if len(lit_groups) > 1 else [None] * len(lit_groups)

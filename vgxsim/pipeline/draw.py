@@ -10,6 +10,8 @@ triangle with a row-independent rounding order.  Lines and points are drawn at o
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from vgxsim.geometry import assembly
@@ -96,7 +98,7 @@ def shade_groups(groups: list) -> list:
 
     Parameters
     ----------
-    groups : list of (DrawState, lmcolor_set, obj, normals, colours, lit)
+    groups : list of LitGroup
         As :func:`shade_vertices` takes them.
 
     Returns
@@ -111,24 +113,26 @@ def shade_groups(groups: list) -> list:
     """
     out: list = [None] * len(groups)
     runs: dict[tuple, list[int]] = {}
-    for i, (state, lms, _obj, _nrm, _cols, lit) in enumerate(groups):
+    for i, grp in enumerate(groups):
+        state = grp.state
         ls = state.lighting
-        if ls is None or ls.lmodel.twoside or override_of(state, lms) is not None:
+        if ls is None or ls.lmodel.twoside or override_of(state, grp.lmcolor_set) is not None:
             continue
-        if not lit.any():
+        if not grp.lit.any():
             continue
         runs.setdefault((id(ls.lmodel), tuple(id(e) for e in ls.lights)), []).append(i)
     for members in runs.values():
         if len(members) == 1:
             continue  # one group: shade_vertices does the same
         g = [groups[i] for i in members]
-        ls = g[0][0].lighting
-        counts = [m[2].shape[0] for m in g]
+        ls = g[0].state.lighting
+        counts = [m.obj.shape[0] for m in g]
         rgba = shade_object_runs(
-            np.concatenate([m[2] for m in g]), np.concatenate([m[3] for m in g]),
-            np.concatenate([m[4] for m in g]), np.concatenate([m[5] for m in g]), counts,
-            [m[0].lighting.modelview for m in g], [m[0].lighting.normal_matrix for m in g],
-            [m[0].lighting.material for m in g], list(ls.lights), ls.lmodel)
+            np.concatenate([m.obj for m in g]), np.concatenate([m.normals for m in g]),
+            np.concatenate([m.colours for m in g]), np.concatenate([m.lit for m in g]),
+            counts, [m.state.lighting.modelview for m in g],
+            [m.state.lighting.normal_matrix for m in g],
+            [m.state.lighting.material for m in g], list(ls.lights), ls.lmodel)
         at = 0
         for i, c in zip(members, counts, strict=True):
             out[i] = rgba[at:at + c]
@@ -146,13 +150,39 @@ def vertex_colour_stage(state: DrawState, obj, rgba):
     return rgba
 
 
-class PendingTriangles:
-    """Triangle draws queued for one combined geometry pass.
+class PendingPart(NamedTuple):
+    """One queued triangle draw of :class:`PendingTriangles`.
 
-    ``parts`` are (obj, rgba, tris, prov, rasters): vertex colours already lit;
-    ``rasters`` is None (the state's raster) or (list of RasterState, per-triangle
-    index).
+    ``obj`` (N, 4) float64 object coordinates; ``rgba`` (N, 4) float64 vertex colours
+    already lit, or None; ``tris`` (T, 3) and ``prov`` (T,) int64 vertex indices into
+    the pending pass (already offset); ``rasters`` None (the pending state's raster)
+    or (list of RasterState, (T,) int64 index per triangle); ``texcoords`` (N, 2)
+    float64 or None.
     """
+
+    obj: np.ndarray
+    rgba: np.ndarray | None
+    tris: np.ndarray
+    prov: np.ndarray
+    rasters: tuple | None
+    texcoords: np.ndarray | None
+
+
+class LitGroup(NamedTuple):
+    """A group handed to :func:`shade_groups`: its draw state, lmcolor_set flag,
+    (N, 4) object coordinates, (N, 3) normals, (N, 4) colours and (N,) lit flags."""
+
+    state: DrawState
+    lmcolor_set: bool
+    obj: np.ndarray
+    normals: np.ndarray
+    colours: np.ndarray
+    lit: np.ndarray
+
+
+class PendingTriangles:
+    """Triangle draws queued for one combined geometry pass (``parts``: a list of
+    :class:`PendingPart`)."""
 
     __slots__ = ("state", "parts", "n")
 
@@ -228,7 +258,7 @@ def defer_triangles(ctx, state: DrawState, lmcolor_set: bool, obj, cols, normals
     elif state.raster is not pend.state.raster:
         rasters = ([state.raster], np.zeros(tris.shape[0], np.int64))
     base = pend.n
-    pend.parts.append((obj, rgba, tris + base, prov + base, rasters, texcoords))
+    pend.parts.append(PendingPart(obj, rgba, tris + base, prov + base, rasters, texcoords))
     pend.n = base + obj.shape[0]
 
 
@@ -237,15 +267,15 @@ def _triangle_states(pend: PendingTriangles):
     they all draw with the pending state's raster.  The list keeps one entry per
     primitive (entries may repeat), so a capture of the batch's input
     (vgxsim.reference.recorder) still sees one record per primitive."""
-    if all(p[4] is None for p in pend.parts):
+    if all(p.rasters is None for p in pend.parts):
         return None
     states = [pend.state.raster]
     per = []
     for p in pend.parts:
-        if p[4] is None:
-            per.append(np.zeros(p[2].shape[0], np.int64))
+        if p.rasters is None:
+            per.append(np.zeros(p.tris.shape[0], np.int64))
             continue
-        rl, idx = p[4]
+        rl, idx = p.rasters
         per.append(idx + len(states))
         states.extend(rl)
     return states, np.concatenate(per)
@@ -261,19 +291,21 @@ def commit_triangles(ctx) -> None:
     parts = pend.parts
     tri_states = _triangle_states(pend)
 
-    def joined(i):
+    def joined(field):
         # One part (a mesh drawn in one call) needs no concatenation copy.
-        return parts[0][i] if len(parts) == 1 else np.concatenate([p[i] for p in parts])
+        if len(parts) == 1:
+            return getattr(parts[0], field)
+        return np.concatenate([getattr(p, field) for p in parts])
 
-    obj = joined(0)
-    rgba = joined(1) if parts[0][1] is not None else None
-    tris = joined(2)
-    prov = joined(3)
+    obj = joined("obj")
+    rgba = joined("rgba") if parts[0].rgba is not None else None
+    tris = joined("tris")
+    prov = joined("prov")
     flat = None if (rgba is None or rs.shademodel != FLAT) else rgba[prov]
     texcoords = None
-    if any(p[5] is not None for p in parts):  # t2* per vertex (0, 0 where not sent)
-        texcoords = np.concatenate([p[5] if p[5] is not None else np.zeros((p[0].shape[0], 2))
-                                    for p in parts])
+    if any(p.texcoords is not None for p in parts):  # t2* per vertex (0, 0 where not sent)
+        texcoords = np.concatenate([p.texcoords if p.texcoords is not None
+                                    else np.zeros((p.obj.shape[0], 2)) for p in parts])
     draw_triangles(ctx.raw_batch, rs, Viewing(state.mvp, state.viewport, state.depth,
                                                state.user_planes), obj,
                    rgba, tris, flat, tri_states=tri_states, texcoords=texcoords)

@@ -70,7 +70,8 @@ def _overridden(state) -> bool:
 class Tables:
     """Per record of a flush's table, in one pass over them: whether its rows take
     the flush pass (``code``), what :func:`light_transform_rows` reads (kernel
-    argument order), its segment class, projection and raster numbers.
+    argument order), its segment class, projection and raster numbers; the
+    lighting rows come from the window's :class:`RowMemo` ``memo``.
 
     Attributes
     ----------
@@ -83,7 +84,9 @@ class Tables:
         the record writes or tests colour (needs_colour).
     """
 
-    def __init__(self, records):
+    def __init__(self, records, memo: RowMemo | None = None):
+        if memo is None:
+            memo = RowMemo()  # (a caller without a window's memo: rows made afresh)
         modes, mvps, mvs, nms, mats, lms, spans = [], [], [], [], [], [], []
         code, klass, proj, wants, rast = [], [], [], [], []
         tables: list[np.ndarray] = []
@@ -130,12 +133,12 @@ class Tables:
             modes.append(2 if st.lmcolor_mode != 0 else 1)
             mvs.append(ls.modelview)
             nms.append(ls.normal_matrix)
-            mats.append(_material_row(ls.material))
-            lms.append(_lmodel_row(ls.lmodel))
+            mats.append(memo.material_row(ls.material))
+            lms.append(memo.lmodel_row(ls.lmodel))
             lkey = tuple(map(id, ls.lights))
             span = light_rows.get(lkey)
             if span is None:
-                table = _light_table(ls.lights)
+                table = memo.light_table(ls.lights)
                 span = light_rows[lkey] = (top, top + table.shape[0])
                 tables.append(table)
                 top += table.shape[0]
@@ -163,56 +166,75 @@ class Tables:
 
 _EYE4 = np.eye(4)
 _EYE3 = np.eye(3)
+_EYE4.flags.writeable = False  # (constants: the kernels read them, nothing writes)
+_EYE3.flags.writeable = False
 _NO_MATERIAL = (0.0,) * 14
 _NO_LMODEL = (0.0,) * LMODEL_COLUMNS
-_LMODEL_ROWS: dict[int, tuple] = {}  # id(LightModel) -> (LightModel, row)
+class RowMemo:
+    """A window's kernel rows of lighting definitions, kept across flushes
+    (``Context.row_memo``): a frame binds the same materials, lighting models and
+    lights again, and their rows are made once.  Each entry keeps the definition
+    objects its key names by id, so no id is reused while the entry lives;
+    definitions are replaced, never mutated.
 
+    Attributes
+    ----------
+    lmodels : dict
+        id(LightModel) -> (LightModel, row).
+    lights : dict
+        value key -> (Light objects, table) (:meth:`light_table`).
+    materials : dict
+        id(Material) -> (Material, row).
+    """
 
-_LIGHT_TABLES: dict[tuple, tuple] = {}  # value key -> (Light objects, table)
+    __slots__ = ("lmodels", "lights", "materials")
 
+    #: Entries each dict holds before it is emptied (memory stays bounded).
+    LIMIT = 256
 
-def _light_table(lights: tuple) -> np.ndarray:
-    """The kernel's light rows of bound lights (equation._light_table), once per
-    value: a frame lmbinds its lights again (new eye-space arrays of the same
-    values), so the key is each Light definition's identity with the bytes of its
-    eye-space position and spot direction (the entry keeps the definitions, so
-    their ids stay theirs; definitions are replaced, never mutated)."""
-    key = tuple((id(light), None if p is None else np.asarray(p, np.float64).tobytes(),
-                 None if d is None else np.asarray(d, np.float64).tobytes())
-                for light, p, d in lights)
-    hit = _LIGHT_TABLES.get(key)
-    if hit is None or any(a is not b for a, (b, _p, _d) in zip(hit[0], lights, strict=True)):
-        if len(_LIGHT_TABLES) > 256:
-            _LIGHT_TABLES.clear()
-        hit = _LIGHT_TABLES[key] = (tuple(e[0] for e in lights),
-                                    equation._light_table(lights))
-    return hit[1]
+    def __init__(self):
+        self.lmodels: dict[int, tuple] = {}
+        self.lights: dict[tuple, tuple] = {}
+        self.materials: dict[int, tuple] = {}
 
+    def light_table(self, lights: tuple) -> np.ndarray:
+        """The kernel's light rows of bound lights (equation._light_table), once per
+        value: a frame lmbinds its lights again (new eye-space arrays of the same
+        values), so the key is each Light definition's identity with the bytes of
+        its eye-space position and spot direction."""
+        key = tuple((id(light), None if p is None else np.asarray(p, np.float64).tobytes(),
+                     None if d is None else np.asarray(d, np.float64).tobytes())
+                    for light, p, d in lights)
+        memo = self.lights
+        hit = memo.get(key)
+        if hit is None or any(a is not b for a, (b, _p, _d) in zip(hit[0], lights,
+                                                                   strict=True)):
+            if len(memo) > self.LIMIT:
+                memo.clear()
+            hit = memo[key] = (tuple(e[0] for e in lights), equation._light_table(lights))
+        return hit[1]
 
-_MATERIAL_ROWS: dict[int, tuple] = {}  # id(Material) -> (Material, row)
+    def material_row(self, m) -> tuple:
+        """A material's kernel terms (emission, ambient, diffuse, specular,
+        shininess, alpha: 14 floats), once per material object."""
+        memo = self.materials
+        hit = memo.get(id(m))
+        if hit is None or hit[0] is not m:
+            if len(memo) > self.LIMIT:
+                memo.clear()
+            hit = memo[id(m)] = (m, (*m.emission, *m.ambient, *m.diffuse, *m.specular,
+                                     m.shininess, m.alpha))
+        return hit[1]
 
-
-def _material_row(m) -> tuple:
-    """A material's kernel terms (emission, ambient, diffuse, specular, shininess,
-    alpha: 14 floats), once per material object (as :func:`_lmodel_row`)."""
-    hit = _MATERIAL_ROWS.get(id(m))
-    if hit is None or hit[0] is not m:
-        if len(_MATERIAL_ROWS) > 256:
-            _MATERIAL_ROWS.clear()
-        hit = _MATERIAL_ROWS[id(m)] = (m, (*m.emission, *m.ambient, *m.diffuse,
-                                           *m.specular, m.shininess, m.alpha))
-    return hit[1]
-
-
-def _lmodel_row(lmodel) -> np.ndarray:
-    """The kernel's light-model row, once per lighting model object (definitions
-    are replaced, never mutated; the entry keeps the object, so its id stays its)."""
-    hit = _LMODEL_ROWS.get(id(lmodel))
-    if hit is None or hit[0] is not lmodel:
-        if len(_LMODEL_ROWS) > 256:
-            _LMODEL_ROWS.clear()
-        hit = _LMODEL_ROWS[id(lmodel)] = (lmodel, equation._lmodel_row(lmodel))
-    return hit[1]
+    def lmodel_row(self, lmodel) -> np.ndarray:
+        """The kernel's light-model row, once per lighting model object."""
+        memo = self.lmodels
+        hit = memo.get(id(lmodel))
+        if hit is None or hit[0] is not lmodel:
+            if len(memo) > self.LIMIT:
+                memo.clear()
+            hit = memo[id(lmodel)] = (lmodel, equation._lmodel_row(lmodel))
+        return hit[1]
 
 
 def draw_rows(ctx, records, tab: Tables, pos, col, nrm, sent, rows: np.ndarray, swaps,
@@ -230,12 +252,12 @@ def draw_rows(ctx, records, tab: Tables, pos, col, nrm, sent, rows: np.ndarray, 
     clears : list
         The stream's clear arguments (CLEAR rows index it).
     clear_fn : callable
-        ``clear_fn(ctx, *clears[i])`` does a clear (vgxsim.pipeline.decode._clear).
+        ``clear_fn(ctx, clears[i])`` does a clear (vgxsim.pipeline.decode._clear).
     """
     rows, tri_rows, rec_of, row_v0, row_v1, vlo, vhi, nproj = flush_rows(rows, tab.proj)
     if tri_rows.shape[0] == 0:
         for r in rows.tolist():
-            clear_fn(ctx, *clears[r[P_CLEAR]])
+            clear_fn(ctx, clears[r[P_CLEAR]])
         return
     nv = vhi - vlo
     clip_v = np.empty((nv, 4))
@@ -267,7 +289,7 @@ def draw_rows(ctx, records, tab: Tables, pos, col, nrm, sent, rows: np.ndarray, 
     batch = ctx.raw_batch
     for q, (h, clear, ta, tb, mixed, wants) in enumerate(segs.tolist()):
         if clear:
-            clear_fn(ctx, *clears[int(rows[h, P_CLEAR])])
+            clear_fn(ctx, clears[int(rows[h, P_CLEAR])])
             continue
         if tb == ta:
             continue
@@ -311,7 +333,7 @@ def _draw_segments(ctx, records, rows, is_clear, clears, clear_fn, rec_klass, re
     batch = ctx.raw_batch
     for s, h in enumerate(heads):
         if is_clear[h]:
-            clear_fn(ctx, *clears[int(rows[h, P_CLEAR])])
+            clear_fn(ctx, clears[int(rows[h, P_CLEAR])])
             continue
         ta, tb = t_cut[s], t_cut[s + 1]
         if tb == ta:

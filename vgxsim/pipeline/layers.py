@@ -49,7 +49,7 @@ def configure(ctx) -> None:
     the pop-up and cursor planes are allocated anew, at the window's size, when a
     drawmode next selects them; every colour map is kept (the maps are the
     monitor's, not the window's planes)."""
-    old = getattr(ctx, "plane_sets", {})
+    old = ctx.plane_sets
     config = ctx.config
     sets = {NORMAL: PlaneSet(NORMAL)}
     view = replace(config, rgb=False, zbits=0, stencil=0, acbits=0)  # what calls see

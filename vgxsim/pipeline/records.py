@@ -234,6 +234,12 @@ class StateTable:
         self.moves: dict[int, int] = {}
         self.move: tuple | None = None
         self._tokens: dict[tuple, tuple] = {}
+        # The last token handed out: tokens only grow, and are never reset (not by
+        # clear(), not when _tokens is emptied), so a token kept in a key of this
+        # table never names another binding.  (Display objects key their replay
+        # blocks by token across windows; a block also holds its window, so equal
+        # tokens of two windows never replay one's block in the other.)
+        self.last_token = 0
 
     def intern(self, ctx) -> int:
         """Index of the window's current draw state (one record per distinct value:
@@ -274,8 +280,7 @@ class StateTable:
                         ctx.depth_range, self._lighting(ctx), int(ctx.lmcolor_mode),
                         bool(ctx.concave), clip_space_planes(ctx), fog_state(ctx),
                         depthcue_state(ctx),
-                        bool(getattr(ctx, "resetls", True)),
-                        bool(getattr(ctx, "lsbackup", False)),
+                        bool(ctx.resetls), bool(ctx.lsbackup),
                         texgen_eye(ctx, rs))
         last = self._last
         if last is not None and same_state(last, rec):
@@ -310,11 +315,12 @@ class StateTable:
                tuple(lights), tuple(map(id, bound_lights)))
         hit = self._tokens.get(key)
         if hit is None:
-            if len(self._tokens) >= 4096:  # (tokens are never reused: see _next_token)
+            if len(self._tokens) >= 4096:  # (tokens are never reused: see last_token)
                 self._tokens.clear()
                 self._kept.clear()
                 self.moves.clear()
-            hit = self._tokens[key] = (_next_token(), bound_lights)
+            self.last_token += 1
+            hit = self._tokens[key] = (self.last_token, bound_lights)
         token = hit[0]
         move = self.move
         if move is not None and move[1] == serial:
@@ -390,13 +396,3 @@ class StateTable:
         self._last = None
         self._lighting_memo = None
         self.generation += 1
-
-
-_token_count = [0]
-
-
-def _next_token() -> int:
-    """A lighting token never handed out before (process-wide, so a token kept in one
-    table's key cannot name another binding after that table forgets its tokens)."""
-    _token_count[0] += 1
-    return _token_count[0]

@@ -35,6 +35,8 @@ CLEAR      index into the stream's      -- (clear, czclear, zclear, sclear: queu
 
 from __future__ import annotations
 
+from types import MappingProxyType
+
 V, SYNC, C, CM, CSKIP, CRAW, N, BGN, END, SWAP, STATE = range(11)
 #: t2*: s, t in the float payload; the vertices after it take that texture coordinate
 #: (decoded by vgxsim.kernels.texture.decode_texcoords, only for streams that hold one).
@@ -47,9 +49,11 @@ CLEAR = 12
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT, PMV = range(7)
 #: The primitive-table kind of a decoded CLEAR (no vertices; P_CLEAR names it).
 CLEAR_KIND = 7
-KIND_OF = {"polygon": POLYGON, "tmesh": TMESH, "qstrip": QSTRIP, "line": LINE,
-           "closedline": CLOSEDLINE, "point": POINT, "pmv": PMV}
-NAME_OF = {v: k for k, v in KIND_OF.items()}
+#: (Read-only mappings: constants, not process state.)
+KIND_OF = MappingProxyType({"polygon": POLYGON, "tmesh": TMESH, "qstrip": QSTRIP,
+                            "line": LINE, "closedline": CLOSEDLINE, "point": POINT,
+                            "pmv": PMV})
+NAME_OF = MappingProxyType({v: k for k, v in KIND_OF.items()})
 #: Kinds drawn as triangles (and so merged into one geometry pass per state record).
 TRIANGLE_KINDS = (POLYGON, TMESH, QSTRIP, PMV)
 

@@ -19,6 +19,8 @@ more part costs more at the flush (about 1 us) than copying a quad's numbers.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from .opcodes import BGN, CM, CRAW, CSKIP, END, SWAP, C, N, T, V
@@ -30,6 +32,36 @@ ATTRS = 11
 MAX_STREAM_OPS = 1 << 20
 #: Chunks with at least this many floats are spliced as arrays (see the docstring).
 SPLICE_MIN_FLOATS = 256
+
+
+class Clear(NamedTuple):
+    """A CLEAR op's arguments (``CommandStream.clears[index]``): the CLEAR_* plane
+    bits, the packed colour, z and stencil values, and the clear state (the
+    RasterState whose raster rectangle and write masks the clear honours)."""
+
+    planes: int
+    colour: int
+    z: int
+    stencil: int
+    state: object
+
+
+class StateMemo(NamedTuple):
+    """An entry of ``CommandStream.state_memo``: the raster snapshot (kept, so its
+    id is not reused), the record's index and the record."""
+
+    snapshot: object
+    index: int
+    record: object
+
+
+class LightMemo(NamedTuple):
+    """An entry of ``CommandStream.light_memo``: the light definition, the modelview
+    it was bound under and the eye-space entry lmbind bound."""
+
+    light: object
+    modelview: object
+    entry: tuple
 
 
 class CommandStream:
@@ -50,7 +82,7 @@ class CommandStream:
     open_ops, open_fl : int
         Where the open primitive's BGN starts (a flush while a primitive is open
         decodes only what precedes it), counted from the start of ``parts``.
-    clears : list of (planes, colour, z, stencil, RasterState)
+    clears : list of Clear
         The clears the stream's CLEAR ops name (emptied with the state table).
     parts : list of (ops, fl)
         What precedes ``ops`` and ``fl`` in the stream: lists recorded before a
@@ -64,8 +96,8 @@ class CommandStream:
         self.parts: list = []
         self.parts_ops = 0
         self.parts_fl = 0
-        # CLEAR ops' arguments, by index: (planes, colour, z, stencil, clear state).
-        self.clears: list = []
+        # CLEAR ops' arguments, by index.
+        self.clears: list[Clear] = []
         self.attrs = np.zeros(ATTRS)
         self.attrs[9] = -1.0
         self.attrs[10] = -1.0
@@ -77,11 +109,11 @@ class CommandStream:
         self.has_texcoords = False
         # The gl layer's memo of interned records by raster snapshot while only the
         # snapshot changes between STATE ops (vgxsim.gl._draw._restate):
-        # id(snapshot) -> (snapshot, record index, record).
-        self.state_memo: dict[int, tuple] = {}
+        # id(snapshot) -> StateMemo.
+        self.state_memo: dict[int, StateMemo] = {}
         # The gl layer's memo of lmbind(LIGHTn) entries (vgxsim.gl._lighting):
-        # slot << 16 | index -> (light, modelview, bound entry); kept across flushes.
-        self.light_memo: dict[int, tuple] = {}
+        # slot << 16 | index -> LightMemo; kept across flushes.
+        self.light_memo: dict[int, LightMemo] = {}
         self.forget()
 
     def forget(self) -> None:
@@ -209,4 +241,5 @@ class Chunk:
         return len(self.ops) == 0
 
 
-__all__ = ["CommandStream", "Chunk", "ATTRS", "BGN", "END", "SWAP", "SPLICE_MIN_FLOATS"]
+__all__ = ["CommandStream", "Chunk", "Clear", "StateMemo", "LightMemo", "ATTRS", "BGN", "END",
+           "SWAP", "SPLICE_MIN_FLOATS"]
