@@ -21,6 +21,7 @@ import numpy as np
 
 from vgxsim import GL
 from vgxsim.lighting import LightingError, light_to_eye
+from vgxsim.pipeline.records import TokenMove
 from vgxsim.stream.recorder import LightMemo
 from vgxsim.tokens import Token
 
@@ -174,7 +175,7 @@ def lmbind(target=_NO, index=_NO, /, *more, **kw) -> None:
                 if moved is not None:
                     tbl.token_serial, tbl.token = ctx.lighting_serial, moved
                 else:
-                    tbl.move = (code, ctx.lighting_serial)
+                    tbl.move = TokenMove(code, ctx.lighting_serial)
             else:
                 ctx.lighting_serial += 1  # the stream records the draw state anew
             ctx.bound[key] = index

@@ -199,6 +199,48 @@ def same_projection(a: DrawState, b: DrawState) -> bool:
             and same_planes(a.user_planes, b.user_planes))
 
 
+class LightingMemo(NamedTuple):
+    """StateTable's last LightingState and what it was made under."""
+
+    serial: int
+    modelview: np.ndarray
+    normal_matrix: np.ndarray
+    state: LightingState | None
+
+
+class Placed(NamedTuple):
+    """A kept record's index in this generation of the table (and the record, which
+    keeps its id from being reused)."""
+
+    index: int
+    record: DrawState
+
+
+class Joined(NamedTuple):
+    """Whether a kept record draws as the one before it: 2 same_state, 1
+    same_geometry, 0 neither (the records keep their ids)."""
+
+    last: DrawState
+    record: DrawState
+    joins: int
+
+
+class TokenEntry(NamedTuple):
+    """A lighting binding's token and its bound (index, eye-space entry) pairs
+    (kept, so the ids in the binding's key are not reused)."""
+
+    token: int
+    lights: tuple
+
+
+class TokenMove(NamedTuple):
+    """A binding call's move between tokens, armed by gl lmbind: its code
+    (token << 20 | target << 16 | index) and the lighting serial after the call."""
+
+    code: int
+    serial: int
+
+
 class StateTable:
     """A window's interned DrawState records (indices of STATE ops).
 
@@ -211,7 +253,7 @@ class StateTable:
         self.geometry: list[int] = []
         self._last: DrawState | None = None
         self._index: dict[tuple, int] = {}
-        self._lighting_memo: tuple | None = None
+        self._lighting_memo: LightingMemo | None = None
         # Bumped by every clear(): an index found under one generation names the same
         # record until the next clear (callers of adopt() keep indices by generation).
         self.generation = 0
@@ -219,8 +261,8 @@ class StateTable:
         # record), and whether a kept record draws as the one before it:
         # (id(last), id(record)) -> (last, record, 2: same_state, 1: same_geometry,
         # 0: neither).  (The records in the values keep their ids from being reused.)
-        self._where: dict[int, tuple] = {}
-        self._pairs: dict[tuple, tuple] = {}
+        self._where: dict[int, Placed] = {}
+        self._pairs: dict[tuple, Joined] = {}
         # intern_kept()'s records by value, kept across clear(): key -> DrawState.
         self._kept: dict[tuple, DrawState] = {}
         # lighting_token()'s memo: (lighting serial, token), and the token of each
@@ -232,8 +274,8 @@ class StateTable:
         # filled in by lighting_token after the call that armed ``move``: (code,
         # serial after the call), set by the gl layer's lmbind.
         self.moves: dict[int, int] = {}
-        self.move: tuple | None = None
-        self._tokens: dict[tuple, tuple] = {}
+        self.move: TokenMove | None = None
+        self._tokens: dict[tuple, TokenEntry] = {}
         # The last token handed out: tokens only grow, and are never reset (not by
         # clear(), not when _tokens is emptied), so a token kept in a key of this
         # table never names another binding.  (Display objects key their replay
@@ -268,11 +310,11 @@ class StateTable:
             return None
         mv, nm = ctx.matrices.modelview_matrix(), ctx.matrices.normal_matrix()
         memo = self._lighting_memo
-        if (memo is not None and memo[0] == ctx.lighting_serial and memo[1] is mv
-                and memo[2] is nm):
-            return memo[3]
+        if (memo is not None and memo.serial == ctx.lighting_serial and memo.modelview is mv
+                and memo.normal_matrix is nm):
+            return memo.state
         ls = lighting_state(ctx)
-        self._lighting_memo = (ctx.lighting_serial, mv, nm, ls)
+        self._lighting_memo = LightingMemo(ctx.lighting_serial, mv, nm, ls)
         return ls
 
     def _new(self, ctx, rs: RasterState, mvp: np.ndarray) -> int:
@@ -320,13 +362,13 @@ class StateTable:
                 self._kept.clear()
                 self.moves.clear()
             self.last_token += 1
-            hit = self._tokens[key] = (self.last_token, bound_lights)
-        token = hit[0]
+            hit = self._tokens[key] = TokenEntry(self.last_token, bound_lights)
+        token = hit.token
         move = self.move
-        if move is not None and move[1] == serial:
+        if move is not None and move.serial == serial:
             if len(self.moves) >= 4096:
                 self.moves.clear()
-            self.moves[move[0]] = token
+            self.moves[move.code] = token
         self.move = None
         self.token_serial, self.token = serial, token
         return token
@@ -354,7 +396,7 @@ class StateTable:
         rec = self.records[idx]
         if rec.raster is rs and rec.mvp is mvp:
             self._kept[key] = rec
-            self._where[id(rec)] = (idx, rec)
+            self._where[id(rec)] = Placed(idx, rec)
         return idx
 
     def adopt(self, rec: DrawState) -> int:
@@ -363,21 +405,21 @@ class StateTable:
         generation, else it is appended as :meth:`_new` appends a new record (or
         given the last one's index when that draws alike)."""
         hit = self._where.get(id(rec))
-        if hit is not None and hit[1] is rec:
-            return hit[0]
+        if hit is not None and hit.record is rec:
+            return hit.index
         records = self.records
         last = self._last
         if last is None:
             joins = 0
         else:
             pair = self._pairs.get((id(last), id(rec)))
-            if pair is not None and pair[0] is last and pair[1] is rec:
-                joins = pair[2]
+            if pair is not None and pair.last is last and pair.record is rec:
+                joins = pair.joins
             else:  # same_state and same_geometry, once per pair of kept records
                 joins = 2 if same_state(last, rec) else 1 if same_geometry(last, rec) else 0
                 if len(self._pairs) >= 4096:
                     self._pairs.clear()
-                self._pairs[(id(last), id(rec))] = (last, rec, joins)
+                self._pairs[(id(last), id(rec))] = Joined(last, rec, joins)
         if joins == 2:
             i = len(records) - 1
         else:
@@ -385,7 +427,7 @@ class StateTable:
             records.append(rec)
             self._last = rec
             i = len(records) - 1
-        self._where[id(rec)] = (i, rec)
+        self._where[id(rec)] = Placed(i, rec)
         return i
 
     def clear(self) -> None:
