@@ -548,7 +548,9 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
                 plan = plan_of(ch, C_OP if ch.last_colour is None else _colour_op(ctx))
             st = ctx.stream
             ops = st.ops
-            if st.parts_ops + len(ops) > MAX_STREAM_OPS:
+            # (Only the lists grow here; parts are bounded where a big splice appends
+            # them, as at bgn*: the stream stays under twice MAX_STREAM_OPS.)
+            if len(ops) > MAX_STREAM_OPS:
                 drain(ctx)
                 ops = st.ops
             snap = ctx.raster._snapshot
