@@ -64,7 +64,7 @@ from vgxsim import GL
 from vgxsim.pipeline.decode import drain
 from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, STATE, SWAP, N, T, V
 from vgxsim.stream.opcodes import C as C_OP
-from vgxsim.stream.recorder import MAX_STREAM_OPS, SPLICE_MIN_FLOATS, Chunk
+from vgxsim.stream.recorder import MAX_STREAM_OPS, SPLICE_MIN_FLOATS, Chunk, RecordedCall
 
 from . import _core
 from ._core import (
@@ -211,7 +211,7 @@ class ObjectRecorder:
         ch.ops.append(CRAW)
         ch.fl.extend(rgba)
         if ch.last_colour is None:
-            ch.first_colour_call = (name, args)
+            ch.first_colour_call = RecordedCall(name, args)
         ch.last_colour = rgba
         ch.normal_after_colour = False
 
@@ -251,7 +251,7 @@ class ObjectRecorder:
                     prim = want or _ANY
         ch = self._current_chunk()
         if needs is not None and ch.needs is None and not self.known:
-            ch.needs, ch.needs_call = needs[0], (needs[1], needs[2])
+            ch.needs, ch.needs_call = needs[0], RecordedCall(needs[1], needs[2])
         self.prim, self.known = prim, known
         for op in ops:
             tag = op[0]
@@ -265,7 +265,7 @@ class ObjectRecorder:
                 ch.normal_after_colour = True
             elif tag == "bgn":
                 ch.touched_prim = True
-                ch.open_at = (len(ch.ops), len(ch.fl))
+                ch.open_ops, ch.open_fl = len(ch.ops), len(ch.fl)
                 ch.ops.append(BGN)
                 ch.ops.append(KIND_OF[op[1]])
                 ch.open = op[1]
@@ -860,7 +860,7 @@ def _append(ctx, ch: Chunk, plan: SplicePlan, colour_op: int) -> None:
     if ch.touched_prim:
         ctx.prim = opened
         if opened is not None:
-            st.open_ops, st.open_fl = base_ops + ch.open_at[0], base_fl + ch.open_at[1]
+            st.open_ops, st.open_fl = base_ops + ch.open_ops, base_fl + ch.open_fl
     # The decoder leaves the chunk with the attributes set here (a C op clears the
     # normal-sent flag, an N op sets it, a CM op sets lmcolor_set), so the stream has
     # them too: the next vertex or splice need not sync again (tests/stream: objects

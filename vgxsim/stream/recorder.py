@@ -64,6 +64,31 @@ class LightMemo(NamedTuple):
     entry: tuple
 
 
+class Part(NamedTuple):
+    """A stretch of the stream before its lists: opcodes and integer payload, and
+    float payload (lists recorded before a splice, or a spliced chunk's read-only
+    int64 and float64 arrays)."""
+
+    ops: object
+    fl: object
+
+
+class ChunkArrays(NamedTuple):
+    """A chunk's opcodes for one colour op as a read-only int64 array and as a list,
+    and its floats as a read-only float64 array (:meth:`Chunk.arrays_for`)."""
+
+    ops: np.ndarray
+    fl: np.ndarray
+    ops_list: list
+
+
+class RecordedCall(NamedTuple):
+    """A gl call as its error messages name it: its name and arguments."""
+
+    name: str
+    args: tuple
+
+
 class CommandStream:
     """One window's stream of commands not yet decoded.
 
@@ -84,7 +109,7 @@ class CommandStream:
         decodes only what precedes it), counted from the start of ``parts``.
     clears : list of Clear
         The clears the stream's CLEAR ops name (emptied with the state table).
-    parts : list of (ops, fl)
+    parts : list of Part
         What precedes ``ops`` and ``fl`` in the stream: lists recorded before a
         splice and the int64 / float64 arrays of the chunks spliced
         (:meth:`splice`); ``parts_ops`` and ``parts_fl`` are their total lengths.
@@ -137,20 +162,20 @@ class CommandStream:
             self.fl.extend(chunk.fl)
             return
         if self.ops or self.fl:
-            self.parts.append((self.ops, self.fl))
+            self.parts.append(Part(self.ops, self.fl))
             self.parts_ops += len(self.ops)
             self.parts_fl += len(self.fl)
             self.ops = []
             self.fl = []
-        self.parts.append((ops, fl))
+        self.parts.append(Part(ops, fl))
         self.parts_ops += ops.shape[0]
         self.parts_fl += fl.shape[0]
 
     def arrays(self) -> tuple[np.ndarray, np.ndarray]:
         """The whole stream as one int64 and one float64 array."""
-        ops = [np.asarray(o, np.int64) for o, _f in self.parts]
+        ops = [np.asarray(p.ops, np.int64) for p in self.parts]
         ops.append(np.array(self.ops, np.int64))
-        fl = [np.asarray(f, np.float64) for _o, f in self.parts]
+        fl = [np.asarray(p.fl, np.float64) for p in self.parts]
         fl.append(np.array(self.fl, np.float64))
         if len(ops) == 1:
             return ops[0], fl[0]
@@ -164,7 +189,7 @@ class CommandStream:
         self.parts = []
         self.parts_ops = self.parts_fl = 0
         if cut_ops < ops.shape[0] or cut_fl < fl.shape[0]:
-            self.parts.append((ops[cut_ops:], fl[cut_fl:]))
+            self.parts.append(Part(ops[cut_ops:], fl[cut_fl:]))
             self.parts_ops = ops.shape[0] - cut_ops
             self.parts_fl = fl.shape[0] - cut_fl
 
@@ -196,23 +221,23 @@ class Chunk:
         self.ops: list = []
         self.fl: list = []
         self.needs: str | None = None  # primitive the caller must have open, or None
-        self.needs_call = ("", ())  # the call that needs it (for the error message)
+        self.needs_call = RecordedCall("", ())  # the call that needs it (error messages)
         self.open: str | None = None  # primitive opened and still open in the chunk
-        self.open_at = (0, 0)  # (ops, fl) positions of that primitive's BGN
+        self.open_ops = self.open_fl = 0  # where that primitive's BGN is in ops, fl
         self.touched_prim = False  # whether the chunk opens or closes primitives
         self.has_lines = False  # lines or points: decoded at once (line-style position)
         self.last_colour: tuple | None = None  # rgba of the last colour call
-        self.first_colour_call = ("", ())
+        self.first_colour_call = RecordedCall("", ())
         self.last_normal: tuple | None = None
         self.normal_after_colour = False
         self.texcoord: tuple | None = None
         self.gpos: tuple | None = None
-        self._variants: dict[tuple, tuple] = {}
+        self._variants: dict[tuple, ChunkArrays] = {}
         # callobj's splice plans by colour op (vgxsim.gl._objects.plan_of).
         self.plans: dict[int, object] = {}
         self.plan_c = None  # plans[C] (callobj's inlined splice reads it directly)
 
-    def arrays_for(self, colour_op: int) -> tuple[np.ndarray, np.ndarray, list]:
+    def arrays_for(self, colour_op: int) -> ChunkArrays:
         """The chunk's opcodes, with every CRAW rewritten to ``colour_op``, and its
         floats, as read-only int64 and float64 arrays, and the opcodes as a list
         (made once per colour op and length: a chunk grows only while its object is
@@ -234,12 +259,13 @@ class Chunk:
             floats = np.array(self.fl, dtype=np.float64)
             codes.flags.writeable = False
             floats.flags.writeable = False
-            out = self._variants[key] = (codes, floats, codes.tolist())
+            out = self._variants[key] = ChunkArrays(codes, floats, codes.tolist())
         return out
 
     def empty(self) -> bool:
         return len(self.ops) == 0
 
 
-__all__ = ["CommandStream", "Chunk", "Clear", "StateMemo", "LightMemo", "ATTRS", "BGN", "END",
+__all__ = ["CommandStream", "Chunk", "ChunkArrays", "Clear", "LightMemo", "Part",
+           "RecordedCall", "StateMemo", "ATTRS", "BGN", "END",
            "SWAP", "SPLICE_MIN_FLOATS"]
