@@ -130,3 +130,66 @@ def test_inlined_callobj_draws_what_splice_and_immediate_mode_draw(lit, monkeypa
     # The caller's colour changed before three calls of object 1, whose chunk starts
     # with its cpack: the inlined path sent no SYNC for them (the splice path does).
     assert syncs_inline < syncs_splice
+
+
+def _lighting_between_calls(call) -> None:
+    """Object 1 at one place, nothing but lighting changed between the calls: twice
+    unlit, then lighting bound under lmcolor(LMC_NULL) (the object's cpack is
+    ignored: the current colour stays the caller's) and twice more -- the last call
+    finds the stream's draw state unchanged since the one before, so the inlined
+    path's memo of "RGB and unlit" (CommandStream.plain_colour) must have been
+    dropped with the STATE op that call recorded -- then lighting off and a polygon
+    without a colour call of its own, which shows the current colour the calls
+    left."""
+    gl.lmdef(GL.DEFMATERIAL, 1, [GL.DIFFUSE, 0.8, 0.6, 0.4, GL.LMNULL])
+    gl.lmdef(GL.DEFLIGHT, 1, [GL.POSITION, 0.3, 0.4, 1.0, 0.0, GL.LMNULL])
+    gl.lmdef(GL.DEFLMODEL, 1, [GL.LMNULL])
+    gl.lmcolor(GL.LMC_NULL)
+    gl.zfunction(GL.ZF_ALWAYS)
+    call(1)
+    gl.c3f(0.1, 0.9, 0.9)
+    call(1)  # (unlit, same state: the memo is set)
+    gl.c3f(0.1, 0.9, 0.9)
+    gl.lmbind(GL.LIGHT0, 1)
+    gl.lmbind(GL.LMODEL, 1)
+    gl.lmbind(GL.MATERIAL, 1)
+    call(1)
+    call(1)
+    gl.lmbind(GL.MATERIAL, 0)
+    gl.pushmatrix()
+    gl.translate(20.0, 0.0, 0.0)
+    _polygon(QUAD)  # the current colour: the c3f above, LMC_NULL ignored the cpacks
+    gl.translate(10.0, 0.0, 0.0)
+    call(1)  # unlit again: the memo is found anew, then used
+    call(1)
+    gl.popmatrix()
+
+
+@pytest.mark.parametrize("mode", ["splice", "immediate"])
+def test_inlined_callobj_follows_lighting_changed_between_calls(mode, monkeypatch):
+    def render(m):
+        monkeypatch.setattr(_core, "REPLAY_OBJECTS", m == "inline")
+        session.reset()
+        gl.prefsize(W, H)
+        gl.winopen("inline")
+        gl.RGBmode()
+        gl.gconfig()
+        gl.zbuffer(1)
+        gl.mmode(GL.MVIEWING)
+        gl.ortho(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0)
+        gl.czclear(0, gl.getgdesc(GL.GD_ZMAX))
+        if m == "immediate":
+            _lighting_between_calls(lambda n: OBJECTS[n]())
+        else:
+            gl.makeobj(1)
+            OBJECTS[1]()
+            gl.closeobj()
+            _lighting_between_calls(gl.callobj)
+        ctx = session.windows[session.current]
+        out = ctx.read_rgba().copy()
+        session.reset()
+        return out
+
+    inline, other = render("inline"), render(mode)
+    assert len({tuple(c) for c in inline.reshape(-1, 4).tolist()}) >= 3  # lit, unlit, bg
+    assert np.array_equal(inline, other)

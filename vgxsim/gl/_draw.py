@@ -184,6 +184,7 @@ def _restate_changed(ctx, st) -> None:
     st.mvp = ctx.matrices._mvp
     st.depth = ctx.depth_range
     st.lighting_serial = ctx.lighting_serial
+    st.plain_colour = False  # (callobj finds it anew under this state)
     st.concave = ctx.concave
     st.vertex_serial = ctx.vertex_serial
     st.ops.append(STATE)

@@ -534,7 +534,23 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
             # splice() of the object's one chunk, inlined (a quad's callobj is mostly
             # the calls around the copy): what its checks decide -- no primitive need
             # be open, none is left open, nothing rare -- was decided at closeobj.
+            st = ctx.stream
+            ops = st.ops
+            # (Only the lists grow here; parts are bounded where a big splice appends
+            # them, as at bgn*: the stream stays under twice MAX_STREAM_OPS.)
+            if len(ops) > MAX_STREAM_OPS:
+                drain(ctx)
+                ops = st.ops
+            snap = ctx.raster._snapshot
+            same = (snap is st.raster and snap is not None
+                    and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
+                    and ctx.lighting_serial == st.lighting_serial
+                    and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial)
             if ch.last_colour is None:
+                plan = ch.plan_c
+            elif same and st.plain_colour:
+                # RGB and unlit, as found at an earlier callobj since the last STATE op
+                # (the colour mode and lighting binding are in its key).
                 plan = ch.plan_c
             elif not ctx.config.rgb:
                 return splice(ctx, ch)  # raises: RGB colour calls in colour map mode
@@ -544,20 +560,11 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
                     plan = ch.plans.get(_colour_op(ctx))
                 else:
                     plan = ch.plan_c
+                    if same:
+                        st.plain_colour = True
             if plan is None:  # (first call for this colour op; closed chunks never grow)
                 plan = plan_of(ch, C_OP if ch.last_colour is None else _colour_op(ctx))
-            st = ctx.stream
-            ops = st.ops
-            # (Only the lists grow here; parts are bounded where a big splice appends
-            # them, as at bgn*: the stream stays under twice MAX_STREAM_OPS.)
-            if len(ops) > MAX_STREAM_OPS:
-                drain(ctx)
-                ops = st.ops
-            snap = ctx.raster._snapshot
-            if not (snap is st.raster and snap is not None
-                    and ctx.matrices._mvp is st.mvp and ctx.depth_range is st.depth
-                    and ctx.lighting_serial == st.lighting_serial
-                    and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
+            if not same:
                 _restate_changed(ctx, st)
             if plan.leads:
                 # The chunk starts with a C op, which sets the decoder's colour and

@@ -104,6 +104,10 @@ class CommandStream:
         identity with the window's current ones before each vertex).
     raster, mvp, depth, lighting_serial, concave, vertex_serial : object
         The draw state the last STATE op recorded (compared by identity at bgn*).
+    plain_colour : bool
+        True once a callobj has found, under that draw state, an RGB window with
+        lighting off (colour calls colour the vertices: the chunk's C plan); reset
+        with every STATE op (the colour mode and lighting binding are in its key).
     open_ops, open_fl : int
         Where the open primitive's BGN starts (a flush while a primitive is open
         decodes only what precedes it), counted from the start of ``parts``.
@@ -146,6 +150,7 @@ class CommandStream:
         self.colour = self.normal = self.sent = self.lmcolor_set = None
         self.raster = self.mvp = self.depth = self.lighting_serial = self.concave = None
         self.vertex_serial = None
+        self.plain_colour = False
 
     def __len__(self) -> int:
         return self.parts_ops + len(self.ops)
