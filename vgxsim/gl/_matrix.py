@@ -220,11 +220,13 @@ def polarview(*args) -> None:
     current(name, args).matrices.mult(T.polarview(dist, azim, inc, twist))
 
 
-@gl_function(record=True)
-def rotate(*args) -> None:
-    """rotate(a, axis): rotate by the Angle ``a`` (int tenths of a degree) about
-    'x', 'y' or 'z' (either case); counter-clockwise looking down the axis toward the
-    origin (rotate(3G)).  A float angle is a GLTypeError: use rot()."""
+#: The axis letters rot and rotate take, for their valid paths (as_axis: either case).
+_AXES = {"x": "x", "y": "y", "z": "z", "X": "x", "Y": "y", "Z": "z"}
+
+
+def _general_rotate(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None:
+        return record_or_refuse(rotate, args, kwargs)
     name = "rotate"
     _nargs(name, args, 2)
     a = as_angle(name, args, args[0])
@@ -232,15 +234,46 @@ def rotate(*args) -> None:
     current(name, args).matrices.mult(T.rotation(a / 10.0, axis))
 
 
-@gl_function(record=True)
-def rot(*args) -> None:
-    """rot(a, axis): rotate by ``a`` degrees (a float) about 'x', 'y' or 'z'."""
+@gl_function(record=True, binds=(0, math.inf, ()))
+def rotate(a=_NO, axis=_NO, /, *more, **kw) -> None:
+    """rotate(a, axis): rotate by the Angle ``a`` (int tenths of a degree) about
+    'x', 'y' or 'z' (either case); counter-clockwise looking down the axis toward the
+    origin (rotate(3G)).  A float angle is a GLTypeError: use rot()."""
+    ctx = session.imm
+    # Valid path (FAST_CALLS): an int Angle and an axis letter; the same matrix
+    # through MatrixState.premultiply (mult without load's copy of the product).
+    if ctx is None or kw or more or type(a) is not int or type(axis) is not str:
+        return _general_rotate(*given((a, axis), more), **kw)
+    ax = _AXES.get(axis)
+    if ax is None:
+        return _general_rotate(a, axis)
+    ctx.matrices.premultiply(T.rotation(a / 10.0, ax))
+
+
+def _general_rot(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None:
+        return record_or_refuse(rot, args, kwargs)
     name = "rot"
     _nargs(name, args, 2)
     a = as_float(name, args, "angle", args[0])
     _finite(name, args, (a,))
     axis = as_axis(name, args, args[1])
     current(name, args).matrices.mult(T.rotation(a, axis))
+
+
+@gl_function(record=True, binds=(0, math.inf, ()))
+def rot(a=_NO, axis=_NO, /, *more, **kw) -> None:
+    """rot(a, axis): rotate by ``a`` degrees (a float) about 'x', 'y' or 'z'."""
+    ctx = session.imm
+    # Valid path (FAST_CALLS): a finite float (a - a is 0.0 only then) and an axis
+    # letter.
+    if (ctx is None or kw or more or type(a) is not float or a - a != 0.0
+            or type(axis) is not str):
+        return _general_rot(*given((a, axis), more), **kw)
+    ax = _AXES.get(axis)
+    if ax is None:
+        return _general_rot(a, axis)
+    ctx.matrices.premultiply(T.rotation(a, ax))
 
 
 def _general_translate(*args, **kwargs) -> None:
@@ -263,13 +296,24 @@ def translate(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
     ctx.matrices.translate(x, y, z)
 
 
-@gl_function(record=True)
-def scale(*args) -> None:
-    """scale(x, y, z): premultiply a scaling (negative factors mirror)."""
+def _general_scale(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None:
+        return record_or_refuse(scale, args, kwargs)
     name = "scale"
     v = _floats(name, args, ("x", "y", "z"))
     _finite(name, args, v)
     current(name, args).matrices.mult(T.scaling(*v))
+
+
+@gl_function(record=True, binds=(0, math.inf, ()))
+def scale(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
+    """scale(x, y, z): premultiply a scaling (negative factors mirror)."""
+    ctx = session.imm
+    # Valid path (FAST_CALLS): three finite floats, as translate's.
+    if (ctx is None or kw or more or type(x) is not float or type(y) is not float
+            or type(z) is not float or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
+        return _general_scale(*given((x, y, z), more), **kw)
+    ctx.matrices.premultiply(T.scaling(x, y, z))
 
 
 def _general_pushmatrix(*args, **kwargs) -> None:

@@ -117,7 +117,10 @@ class MatrixState:
     def load(self, m: np.ndarray) -> None:
         if self._pending is not None:
             self._settle()
-        m = np.array(m, dtype=np.float64).reshape(4, 4)
+        self._store(np.array(m, dtype=np.float64).reshape(4, 4))
+
+    def _store(self, m: np.ndarray) -> None:
+        """Make ``m``, a (4, 4) float64 array no one else holds, the current matrix."""
         if self.mode in (MSINGLE, MPROJECTION):
             m = self._picked(m)
         if self.mode == MPROJECTION:
@@ -131,6 +134,12 @@ class MatrixState:
     def mult(self, m: np.ndarray) -> None:
         """multmatrix: current := m @ current (IRIS premultiplies)."""
         self.load(np.asarray(m, dtype=np.float64).reshape(4, 4) @ self.current())
+
+    def premultiply(self, m: np.ndarray) -> None:
+        """:meth:`mult` for a (4, 4) float64 array ``m`` (rot, rotate and scale's
+        valid paths): the same product, stored without :meth:`load`'s copy of it (a
+        new array, which no one else holds); the values are mult's."""
+        self._store(m @ self.current())
 
     def load_projection(self, m: np.ndarray) -> None:
         """perspective/window/ortho/ortho2: in MSINGLE they load the single matrix,

@@ -1,0 +1,148 @@
+"""rot, rotate and scale's valid paths (gl/_core.py FAST_CALLS; the product through
+MatrixState.premultiply) give the matrices and planes their general paths give, bit
+for bit, and hand every argument they do not take to the general path, which raises
+the GLError naming the call and the argument."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from vgxsim import GL, gl
+from vgxsim.gl import _core
+from vgxsim.gl._core import session
+
+W, H = 40, 32
+NAN, INF = math.nan, math.inf
+
+
+def _program(rng: np.random.Generator) -> list:
+    """Random matrix calls (every form the valid paths take and some they hand on:
+    int angles and factors, upper-case axes) between quads, in MVIEWING."""
+    calls = []
+    for _ in range(60):
+        r = rng.random()
+        if r < 0.2:
+            axis = str(rng.choice(list("xyzXYZ")))
+            calls.append(("rot", (float(rng.uniform(-180, 180)), axis)))
+        elif r < 0.3:
+            calls.append(("rot", (int(rng.integers(-90, 90)), "z")))
+        elif r < 0.45:
+            axis = str(rng.choice(list("xyzZ")))
+            calls.append(("rotate", (int(rng.integers(-1800, 1800)), axis)))
+        elif r < 0.6:
+            f = [float(rng.choice([-1.0, 1.0]) * rng.uniform(0.5, 1.5)) for _ in range(3)]
+            calls.append(("scale", tuple(f) if rng.random() < 0.8 else (1, 2, 1)))
+        elif r < 0.7:
+            calls.append(("translate", tuple(float(v) for v in rng.uniform(-3, 3, 3))))
+        elif r < 0.8:
+            calls.append(("pushmatrix", ()))
+        elif r < 0.9:
+            calls.append(("popmatrix", ()))
+        else:
+            calls.append(("quad", (int(rng.integers(0, 1 << 24)),)))
+    return calls
+
+
+def _render(calls: list, fast: bool, monkeypatch) -> tuple[dict, list]:
+    monkeypatch.setattr(_core, "FAST_CALLS", fast)
+    session.reset()
+    try:
+        gl.prefsize(W, H)
+        gl.winopen("matrix")
+        gl.RGBmode()
+        gl.gconfig()
+        gl.mmode(GL.MVIEWING)
+        gl.ortho(-12.0, 12.0, -10.0, 10.0, -20.0, 20.0)
+        gl.backface(0)
+        depth, matrices = 0, []
+        for name, args in calls:
+            if name == "quad":
+                gl.cpack(0xFF000000 | args[0])
+                gl.bgnpolygon()
+                for p in ((-2.0, -2.0, 0.0), (2.0, -2.0, 0.0), (2.0, 2.0, 0.0), (-2.0, 2.0, 0.0)):
+                    gl.v3f(p)
+                gl.endpolygon()
+                continue
+            if name == "pushmatrix":
+                if depth >= 20:
+                    continue
+                depth += 1
+            if name == "popmatrix":
+                if depth == 0:
+                    continue
+                depth -= 1
+            getattr(gl, name)(*args)
+            matrices.append(np.asarray(gl.getmatrix(), np.float64))
+        ctx = session.windows[session.current]
+        planes = {"rgba": ctx.read_rgba().copy(), "z": ctx.fb.z.copy()}
+        return planes, matrices
+    finally:
+        session.reset()
+        monkeypatch.setattr(_core, "FAST_CALLS", True)
+        session.refresh()
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_matrix_calls_valid_paths_give_identical_matrices_and_planes(seed, monkeypatch):
+    calls = _program(np.random.default_rng(900 + seed))
+    fast_planes, fast_m = _render(calls, True, monkeypatch)
+    slow_planes, slow_m = _render(calls, False, monkeypatch)
+    assert len(fast_m) == len(slow_m)
+    for a, b in zip(fast_m, slow_m, strict=True):
+        assert a.tobytes() == b.tobytes()  # bit for bit, -0.0 included
+    for k in fast_planes:
+        assert np.array_equal(fast_planes[k], slow_planes[k]), k
+    assert len(np.unique(fast_planes["rgba"].reshape(-1, 4), axis=0)) > 2
+
+
+@pytest.fixture
+def ctx(gl_window):
+    c = gl_window(16, 12)
+    assert session.imm is c  # the valid paths are in effect
+    return c
+
+
+@pytest.mark.parametrize("call, args, kwargs, error, pattern", [
+    ("rot", (NAN, "z"), {}, gl.GLValueError, r"rot\(nan, 'z'\): arguments must be finite"),
+    ("rot", (INF, "x"), {}, gl.GLValueError, r"rot\(inf, 'x'\)"),
+    ("rot", (1.0, "w"), {}, gl.GLValueError, r"rot\(1.0, 'w'\): axis must be"),
+    ("rot", (1.0, 3), {}, gl.GLValueError, r"rot\(1.0, 3\): axis must be"),
+    ("rot", ("1", "z"), {}, gl.GLTypeError, r"rot\('1', 'z'\): angle must be a number"),
+    ("rot", (1.0,), {}, gl.GLTypeError, r"rot\(1.0\): expected 2 arguments"),
+    ("rot", (1.0, "z", 1), {}, gl.GLTypeError, r"rot\(1.0, 'z', 1\): expected 2"),
+    ("rot", (1.0,), {"axis": "z"}, gl.GLTypeError, r"rot\(1.0, axis='z'\)"),
+    ("rotate", (90.0, "z"), {}, gl.GLTypeError, r"rotate\(90.0, 'z'\): Angle must be an int"),
+    ("rotate", (900, "q"), {}, gl.GLValueError, r"rotate\(900, 'q'\): axis must be"),
+    ("rotate", (900,), {}, gl.GLTypeError, r"rotate\(900\): expected 2 arguments"),
+    ("rotate", (900, "z"), {"x": 1}, gl.GLTypeError, r"rotate\(900, 'z', x=1\)"),
+    ("scale", (1.0, NAN, 1.0), {}, gl.GLValueError, r"scale\(1.0, nan, 1.0\): arguments"),
+    ("scale", (1.0, 2.0), {}, gl.GLTypeError, r"scale\(1.0, 2.0\): expected 3 arguments"),
+    ("scale", (1.0, None, 1.0), {}, gl.GLTypeError, r"scale\(1.0, None, 1.0\): y must be"),
+    ("scale", (1.0, 1.0, 1.0, 1.0), {}, gl.GLTypeError, r"scale\(1.0, 1.0, 1.0, 1.0\)"),
+    ("scale", (1.0, 1.0), {"z": 1.0}, gl.GLTypeError, r"scale\(1.0, 1.0, z=1.0\)"),
+])
+def test_bad_matrix_arguments_raise_naming_the_call(ctx, call, args, kwargs, error, pattern):
+    before = np.asarray(gl.getmatrix())
+    with pytest.raises(error, match=pattern):
+        getattr(gl, call)(*args, **kwargs)
+    assert np.array_equal(np.asarray(gl.getmatrix()), before)  # nothing changed
+
+
+def test_matrix_calls_are_recorded_in_display_objects(ctx):
+    gl.makeobj(5)
+    gl.rot(30.0, "Z")
+    gl.rotate(450, "x")
+    gl.scale(2.0, 1.0, 0.5)
+    gl.closeobj()
+    before = np.asarray(gl.getmatrix())
+    gl.callobj(5)
+    replayed = np.asarray(gl.getmatrix())
+    assert not np.array_equal(replayed, before)
+    gl.loadmatrix(before.tolist())
+    gl.rot(30.0, "z")
+    gl.rotate(450, "x")
+    gl.scale(2.0, 1.0, 0.5)
+    assert np.asarray(gl.getmatrix()).tobytes() == replayed.tobytes()
