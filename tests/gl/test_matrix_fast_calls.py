@@ -1,5 +1,5 @@
 """rot, rotate and scale's valid paths (gl/_core.py FAST_CALLS; the product through
-MatrixState.premultiply) give the matrices and planes their general paths give, bit
+MatrixState.rotate_axis and scale_by) give the matrices and planes their general paths give, bit
 for bit, and hand every argument they do not take to the general path, which raises
 the GLError naming the call and the argument."""
 

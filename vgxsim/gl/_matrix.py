@@ -240,14 +240,14 @@ def rotate(a=_NO, axis=_NO, /, *more, **kw) -> None:
     'x', 'y' or 'z' (either case); counter-clockwise looking down the axis toward the
     origin (rotate(3G)).  A float angle is a GLTypeError: use rot()."""
     ctx = session.imm
-    # Valid path (FAST_CALLS): an int Angle and an axis letter; the same matrix
-    # through MatrixState.premultiply (mult without load's copy of the product).
+    # Valid path (FAST_CALLS): an int Angle and an axis letter; the same matrix and
+    # product through MatrixState.rotate_axis (no new rotation array, no copy).
     if ctx is None or kw or more or type(a) is not int or type(axis) is not str:
         return _general_rotate(*given((a, axis), more), **kw)
     ax = _AXES.get(axis)
     if ax is None:
         return _general_rotate(a, axis)
-    ctx.matrices.premultiply(T.rotation(a / 10.0, ax))
+    ctx.matrices.rotate_axis(a / 10.0, ax)
 
 
 def _general_rot(*args, **kwargs) -> None:
@@ -273,7 +273,7 @@ def rot(a=_NO, axis=_NO, /, *more, **kw) -> None:
     ax = _AXES.get(axis)
     if ax is None:
         return _general_rot(a, axis)
-    ctx.matrices.premultiply(T.rotation(a, ax))
+    ctx.matrices.rotate_axis(a, ax)
 
 
 def _general_translate(*args, **kwargs) -> None:
@@ -313,7 +313,7 @@ def scale(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
     if (ctx is None or kw or more or type(x) is not float or type(y) is not float
             or type(z) is not float or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
         return _general_scale(*given((x, y, z), more), **kw)
-    ctx.matrices.premultiply(T.scaling(x, y, z))
+    ctx.matrices.scale_by(x, y, z)
 
 
 def _general_pushmatrix(*args, **kwargs) -> None:

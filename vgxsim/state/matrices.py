@@ -34,6 +34,8 @@ A new window starts in MSINGLE with the pixel-unit 2-D projection loaded
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 MSINGLE, MPROJECTION, MVIEWING, MTEXTURE = 0, 1, 2, 3
@@ -74,6 +76,9 @@ class MatrixState:
         self._mvp = None
         self._mv_inv_t = None
         self._pending: list | None = None  # deferred translate() offsets, in call order
+        # rotate_axis and scale_by's matrices, overwritten at each call (only their
+        # products are kept): identity but for the entries a call writes.
+        self._scratch = {k: np.eye(4) for k in "xyzs"}
 
     def _touch(self) -> None:
         self._mvp = None
@@ -135,11 +140,40 @@ class MatrixState:
         """multmatrix: current := m @ current (IRIS premultiplies)."""
         self.load(np.asarray(m, dtype=np.float64).reshape(4, 4) @ self.current())
 
-    def premultiply(self, m: np.ndarray) -> None:
-        """:meth:`mult` for a (4, 4) float64 array ``m`` (rot, rotate and scale's
-        valid paths): the same product, stored without :meth:`load`'s copy of it (a
-        new array, which no one else holds); the values are mult's."""
-        self._store(m @ self.current())
+    def rotate_axis(self, degrees: float, axis: str) -> None:
+        """``mult(rotation(degrees, axis))`` for axis ``'x'``, ``'y'`` or ``'z'`` (rot
+        and rotate's valid paths): the rotation's entries are written into this
+        state's scratch matrix for the axis -- the values
+        :func:`vgxsim.geometry.transform.rotation` gives -- and the product, a new
+        array no one else holds, is stored without :meth:`load`'s copy."""
+        a = math.radians(degrees)
+        c, s = math.cos(a), math.sin(a)
+        m = self._scratch[axis]
+        if axis == "x":
+            m[1, 1] = c
+            m[1, 2] = s
+            m[2, 1] = -s
+            m[2, 2] = c
+        elif axis == "y":
+            m[0, 0] = c
+            m[0, 2] = -s
+            m[2, 0] = s
+            m[2, 2] = c
+        else:
+            m[0, 0] = c
+            m[0, 1] = s
+            m[1, 0] = -s
+            m[1, 1] = c
+        self._store(np.dot(m, self.current()))
+
+    def scale_by(self, x: float, y: float, z: float) -> None:
+        """``mult(scaling(x, y, z))`` (scale's valid path), through the scratch
+        diagonal matrix, as :meth:`rotate_axis`."""
+        m = self._scratch["s"]
+        m[0, 0] = x
+        m[1, 1] = y
+        m[2, 2] = z
+        self._store(np.dot(m, self.current()))
 
     def load_projection(self, m: np.ndarray) -> None:
         """perspective/window/ortho/ortho2: in MSINGLE they load the single matrix,
