@@ -207,8 +207,41 @@ def _c3f_call(doc: str):
 
 c3f = _c3f_call("""Current colour from 3 floats in [0, 1]: ``c3f((r, g, b))`` or
     ``c3f(r, g, b)``; alpha 1.0, values outside [0, 1] saturate.""")
-c4f = _colour_call("c4f", _float_rgba("c4f", 4),
-                   "Current colour from 4 floats in [0, 1] (r, g, b, a); values saturate.")
+def _c4f_call(doc: str):
+    """c4f: :func:`_colour_call` with its valid path inlined, as :func:`_c3f_call`
+    (four floats already in [0, 1], separately or as one tuple or list)."""
+    rgba_of = _float_rgba("c4f", 4)
+    slow = _colour_call("c4f", rgba_of, doc)
+    general = slow.general
+
+    def c4f(r=_NO, g=_NO, b=_NO, a=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        p = None
+        if (a is _NO and b is _NO and g is _NO and (type(r) is tuple or type(r) is list)
+                and len(r) == 4):
+            p = r
+            r, g, b, a = p
+        if (ctx is None or kw or more
+                or type(r) is not float or type(g) is not float or type(b) is not float
+                or type(a) is not float
+                or not (0.0 <= r <= 1.0 and 0.0 <= g <= 1.0 and 0.0 <= b <= 1.0
+                        and 0.0 <= a <= 1.0)
+                or not ctx.config.rgb):
+            return general(*((p,) if p is not None else given((r, g, b, a), more)), **kw)
+        bound = ctx.bound
+        if bound["material"] != 0 and bound["lmodel"] != 0:  # Context.lighting_active
+            _set_rgba(ctx, (r, g, b, a))  # lmcolor(3G) decides
+            return
+        ctx.colour = (r, g, b, a)
+        ctx.last_sent = "colour"
+
+    c4f.__doc__ = doc
+    call = gl_function(binds=(0, math.inf, ()))(c4f)
+    call.stream_rgba = rgba_of
+    return call
+
+
+c4f = _c4f_call("Current colour from 4 floats in [0, 1] (r, g, b, a); values saturate.")
 c3i = _colour_call("c3i", _int_rgba("c3i", 3),
                    "Current colour from 3 ints 0..255 (alpha 255); values saturate.")
 c4i = _colour_call("c4i", _int_rgba("c4i", 4),
@@ -255,16 +288,35 @@ def cpack(abgr=_NO, /, *more, **kw) -> None:
 cpack.stream_rgba = _cpack_rgba
 
 
-@gl_function()
-def RGBcolor(r: int, g: int, b: int) -> None:
+def _general_RGBcolor(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None or len(args) != 3:
+        return record_or_refuse(RGBcolor, args, kwargs)
+    ctx = current("RGBcolor", args)
+    _need_rgb(ctx, "RGBcolor", args)
+    _set_rgba(ctx, _rgbcolor_rgba(args))
+
+
+@gl_function(binds=(3, 3, ("int", "int", "int")))
+def RGBcolor(r=_NO, g=_NO, b=_NO, /, *more, **kw) -> None:
     """Set the current colour from 0..255 components (RGBcolor(3G)); alpha 255.
 
     Alpha is set to 255 (as IGL does; the manual page says nothing about alpha).
     """
-    args = (r, g, b)
-    ctx = current("RGBcolor", args)
-    _need_rgb(ctx, "RGBcolor", args)
-    _set_rgba(ctx, _rgbcolor_rgba(args))
+    ctx = session.imm
+    # Valid path (FAST_CALLS): three ints 0..255 into an RGB window (_BYTE[v] is the
+    # general path's v / 255.0); anything else, saturated values included, goes to
+    # the general path.
+    if (ctx is None or kw or more or type(r) is not int or type(g) is not int
+            or type(b) is not int or not (0 <= r <= 255 and 0 <= g <= 255 and 0 <= b <= 255)
+            or not ctx.config.rgb):
+        return _general_RGBcolor(*given((r, g, b), more), **kw)
+    rgba = (_BYTE[r], _BYTE[g], _BYTE[b], 1.0)
+    bound = ctx.bound
+    if bound["material"] != 0 and bound["lmodel"] != 0:  # Context.lighting_active
+        _set_rgba(ctx, rgba)  # lmcolor(3G) decides
+        return
+    ctx.colour = rgba
+    ctx.last_sent = "colour"
 
 
 RGBcolor.stream_rgba = _rgbcolor_rgba
