@@ -47,6 +47,8 @@ from vgxsim.stream.recorder import MAX_STREAM_OPS, StateMemo
 from . import _core
 from ._core import (
     _NO,
+    INT_MAX,
+    INT_MIN,
     GLTypeError,
     GLUsageError,
     GLValueError,
@@ -505,8 +507,30 @@ def _vertex_call(n: int, suffix: str):
         fl.append(z)
         fl.append(1.0)
 
+    def call3i(x=_NO, y=_NO, z=_NO, /, *more, **kw):
+        # v3i/v3s: three ints 32-bit or smaller (as the IRIS GL long is) into an open
+        # primitive; float(v) is the general path's coords() value.
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is None
+                or type(x) is not int or type(y) is not int or type(z) is not int
+                or not (INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX
+                        and INT_MIN <= z <= INT_MAX)):
+            return general(*given((x, y, z), more), **kw)
+        st = ctx.stream
+        if (ctx.colour is not st.colour or ctx.normal is not st.normal
+                or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+            sync(ctx, st)
+        st.ops.append(V)
+        fl = st.fl
+        fl.append(float(x))
+        fl.append(float(y))
+        fl.append(float(z))
+        fl.append(1.0)
+
     if n == 3 and not integer:
         call = call3  # noqa: F811 - the specialised form replaces the generic one
+    elif n == 3:
+        call = call3i  # noqa: F811
     kind = "ints" if integer else "numbers"
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): a vertex from {n} {kind}, as {name}(x, ...) or "
@@ -569,12 +593,44 @@ normal = _normal_call("normal", "normal((nx, ny, nz)): the obsolete form of n3f.
 def _tex_call(suffix: str):
     name = f"t2{suffix}"
     integer = suffix in ("s", "i")
+    doc = (f"{name}((s, t)): the current texture coordinate (t2(3G)); stored in "
+           f"Context.texcoord.")
 
     def parse(args: tuple) -> list:
         return [("t", coords(name, args, 2, integer))]
 
-    return stream_call(name, parse, f"{name}((s, t)): the current texture coordinate "
-                                    f"(t2(3G)); stored in Context.texcoord.")
+    if integer:
+        return stream_call(name, parse, doc)
+
+    def general(*args, **kwargs):
+        if kwargs or session.recording is not None:
+            return record_or_refuse(call, args, kwargs)
+        apply_ops(current(name, args), name, args, parse(args))
+
+    def call(s=_NO, t=_NO, /, *more, **kw):
+        # t2f/t2d (per vertex in a textured program): two finite floats, or one tuple
+        # or list of them; apply_ops' "t" operation, inlined.
+        ctx = session.imm
+        p = None
+        if t is _NO and (type(s) is tuple or type(s) is list) and len(s) == 2:
+            p = s
+            s, t = p
+        if (ctx is None or kw or more or type(s) is not float or type(t) is not float
+                or s - s != 0.0 or t - t != 0.0):
+            return general(*((p,) if p is not None else given((s, t), more)), **kw)
+        ctx.texcoord = (s, t)
+        st = ctx.stream
+        st.ops.append(T)
+        fl = st.fl
+        fl.append(s)
+        fl.append(t)
+        st.has_texcoords = True
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = doc
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
+    call.stream = parse
+    return call
 
 
 t2s, t2i, t2f, t2d = (_tex_call(s) for s in "sifd")
