@@ -1,7 +1,8 @@
-"""rot, rotate and scale's valid paths (gl/_core.py FAST_CALLS; the product through
-MatrixState.rotate_axis and scale_by) give the matrices and planes their general paths give, bit
-for bit, and hand every argument they do not take to the general path, which raises
-the GLError naming the call and the argument."""
+"""rot, rotate, scale, loadmatrix and multmatrix's valid paths (gl/_core.py
+FAST_CALLS; MatrixState.rotate_axis, scale_by, mult_by and load_owned) give the
+matrices and planes their general paths give, bit for bit, and hand every argument
+they do not take to the general path, which raises the GLError naming the call and
+the argument."""
 
 from __future__ import annotations
 
@@ -35,8 +36,18 @@ def _program(rng: np.random.Generator) -> list:
         elif r < 0.6:
             f = [float(rng.choice([-1.0, 1.0]) * rng.uniform(0.5, 1.5)) for _ in range(3)]
             calls.append(("scale", tuple(f) if rng.random() < 0.8 else (1, 2, 1)))
-        elif r < 0.7:
+        elif r < 0.65:
             calls.append(("translate", tuple(float(v) for v in rng.uniform(-3, 3, 3))))
+        elif r < 0.7:
+            # A matrix near the identity, as a list or tuple of floats, some ints.
+            # (Affine: the last column stays 0, 0, 0, 1.)
+            m = (np.eye(4) + rng.uniform(-0.2, 0.2, (4, 4))).reshape(-1).tolist()
+            m[3] = m[7] = m[11] = 0.0
+            m[15] = 1.0
+            if rng.random() < 0.3:
+                m[int(rng.choice([0, 5, 10, 12, 13]))] = int(rng.integers(1, 2))
+            name = "multmatrix" if rng.random() < 0.7 else "loadmatrix"
+            calls.append((name, (m if rng.random() < 0.5 else tuple(m),)))
         elif r < 0.8:
             calls.append(("pushmatrix", ()))
         elif r < 0.9:
@@ -75,7 +86,8 @@ def _render(calls: list, fast: bool, monkeypatch) -> tuple[dict, list]:
                     continue
                 depth -= 1
             getattr(gl, name)(*args)
-            matrices.append(np.asarray(gl.getmatrix(), np.float64))
+            if name != "translate":  # (its deferred product then meets the next call)
+                matrices.append(np.asarray(gl.getmatrix(), np.float64))
         ctx = session.windows[session.current]
         planes = {"rgba": ctx.read_rgba().copy(), "z": ctx.fb.z.copy()}
         return planes, matrices
@@ -123,6 +135,17 @@ def ctx(gl_window):
     ("scale", (1.0, None, 1.0), {}, gl.GLTypeError, r"scale\(1.0, None, 1.0\): y must be"),
     ("scale", (1.0, 1.0, 1.0, 1.0), {}, gl.GLTypeError, r"scale\(1.0, 1.0, 1.0, 1.0\)"),
     ("scale", (1.0, 1.0), {"z": 1.0}, gl.GLTypeError, r"scale\(1.0, 1.0, z=1.0\)"),
+    ("multmatrix", ([1.0] * 15 + [NAN],), {}, gl.GLValueError,
+     r"multmatrix\(\[16 values\]\): arguments must be finite"),
+    ("multmatrix", ([1.0] * 15 + [INF],), {}, gl.GLValueError, r"arguments must be finite"),
+    ("multmatrix", ([1.0] * 15,), {}, gl.GLTypeError, r"expected 16 numbers, got 15"),
+    ("multmatrix", ([1.0] * 15 + ["1"],), {}, gl.GLTypeError, r"element 15 must be a number"),
+    ("multmatrix", ([1.0] * 15 + [None],), {}, gl.GLTypeError, r"element 15 must be a number"),
+    ("multmatrix", ([[1.0] * 4] * 4,), {}, gl.GLTypeError, r"not nested rows"),
+    ("multmatrix", ([1.0] * 16,), {"x": 1}, gl.GLTypeError, r"multmatrix\(\[16 values\], x=1\)"),
+    ("loadmatrix", ([1.0] * 15 + [NAN],), {}, gl.GLValueError, r"loadmatrix\(\[16 values\]\)"),
+    ("loadmatrix", ((1.0,) * 17,), {}, gl.GLTypeError, r"expected 16 numbers, got 17"),
+    ("loadmatrix", ([1.0] * 16, 1), {}, gl.GLTypeError, r"loadmatrix\(\[16 values\], 1\)"),
 ])
 def test_bad_matrix_arguments_raise_naming_the_call(ctx, call, args, kwargs, error, pattern):
     before = np.asarray(gl.getmatrix())
@@ -146,3 +169,27 @@ def test_matrix_calls_are_recorded_in_display_objects(ctx):
     gl.rotate(450, "x")
     gl.scale(2.0, 1.0, 0.5)
     assert np.asarray(gl.getmatrix()).tobytes() == replayed.tobytes()
+
+
+@pytest.mark.parametrize("fast", [True, False])
+def test_loadmatrix_after_a_deferred_translate_replaces_it(fast, monkeypatch):
+    monkeypatch.setattr(_core, "FAST_CALLS", fast)
+    session.reset()
+    try:
+        gl.prefsize(8, 8)
+        gl.winopen("load")
+        gl.mmode(GL.MVIEWING)
+        gl.translate(1.0, 2.0, 3.0)  # deferred (DEFER_TRANSLATE): met by loadmatrix
+        m = [2.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 5.0, 6.0, 7.0, 1.0]
+        gl.loadmatrix(m)
+        assert gl.getmatrix() == m
+        gl.translate(1.0, 0.0, 0.0)
+        gl.multmatrix(m)  # m @ (translation @ m)
+        t = np.eye(4)
+        t[3, :3] = (1.0, 0.0, 0.0)
+        want = np.asarray(m).reshape(4, 4) @ (t @ np.asarray(m).reshape(4, 4))
+        assert np.array_equal(np.asarray(gl.getmatrix()).reshape(4, 4), want)
+    finally:
+        session.reset()
+        monkeypatch.setattr(_core, "FAST_CALLS", True)
+        session.refresh()

@@ -394,21 +394,63 @@ def _not_stacked(name: str, args: tuple, ctx) -> None:
                        f"it with loadmatrix()") from None
 
 
-@gl_function(record=True)
-def loadmatrix(*args) -> None:
-    """loadmatrix(m): replace the current matrix with ``m`` (16 numbers, row-major,
-    translation in m[12:15]; also accepted: 16 separate arguments or a (4, 4) array)."""
+_F64 = np.dtype(np.float64)
+
+
+def _plain_matrix(m) -> np.ndarray | None:
+    """The (4, 4) float64 array of a Matrix given as one list or tuple of 16 plain
+    numbers, all finite, else None (the general path decides).  np.array makes a
+    float64 vector of such a list only when every element is a float, int or bool
+    -- what flat_numbers takes -- and float(v) is its value of each; a string, None,
+    a nested row or an int past 64 bits gives another dtype or shape.  A non-finite
+    element makes the sum non-finite (as does an overflowing sum of finite ones,
+    which the general path then accepts)."""
+    if (type(m) is not list and type(m) is not tuple) or len(m) != 16:
+        return None
+    a = np.array(m)
+    if a.dtype is not _F64 or a.ndim != 1:
+        return None
+    t = sum(m)
+    if t - t != 0.0:
+        return None
+    return a.reshape(4, 4)
+
+
+def _general_loadmatrix(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None:
+        return record_or_refuse(loadmatrix, args, kwargs)
     m = _matrix_arg("loadmatrix", args)
     _finite("loadmatrix", args, m)
     current("loadmatrix", args).matrices.load(m)
 
 
-@gl_function(record=True)
-def multmatrix(*args) -> None:
-    """multmatrix(m): current := m @ current (IRIS premultiplies)."""
+@gl_function(record=True, binds=(0, math.inf, ()))
+def loadmatrix(m=_NO, /, *more, **kw) -> None:
+    """loadmatrix(m): replace the current matrix with ``m`` (16 numbers, row-major,
+    translation in m[12:15]; also accepted: 16 separate arguments or a (4, 4) array)."""
+    ctx = session.imm
+    a = None if (ctx is None or kw or more) else _plain_matrix(m)
+    if a is None:
+        return _general_loadmatrix(*given((m,), more), **kw)
+    ctx.matrices.load_owned(a)
+
+
+def _general_multmatrix(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None:
+        return record_or_refuse(multmatrix, args, kwargs)
     m = _matrix_arg("multmatrix", args)
     _finite("multmatrix", args, m)
     current("multmatrix", args).matrices.mult(m)
+
+
+@gl_function(record=True, binds=(0, math.inf, ()))
+def multmatrix(m=_NO, /, *more, **kw) -> None:
+    """multmatrix(m): current := m @ current (IRIS premultiplies)."""
+    ctx = session.imm
+    a = None if (ctx is None or kw or more) else _plain_matrix(m)
+    if a is None:
+        return _general_multmatrix(*given((m,), more), **kw)
+    ctx.matrices.mult_by(a)
 
 
 @gl_function(record=False)

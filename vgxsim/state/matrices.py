@@ -140,6 +140,19 @@ class MatrixState:
         """multmatrix: current := m @ current (IRIS premultiplies)."""
         self.load(np.asarray(m, dtype=np.float64).reshape(4, 4) @ self.current())
 
+    def mult_by(self, m: np.ndarray) -> None:
+        """:meth:`mult` for a (4, 4) float64 array ``m`` (multmatrix's valid path): the
+        product (np.dot, the dgemm of ``@``), a new array no one else holds, is stored
+        without :meth:`load`'s copy."""
+        self._store(np.dot(m, self.current()))
+
+    def load_owned(self, m: np.ndarray) -> None:
+        """:meth:`load` of a (4, 4) float64 array no one else holds (loadmatrix's valid
+        path, which made it): stored without a copy."""
+        if self._pending is not None:
+            self._settle()
+        self._store(m)
+
     def rotate_axis(self, degrees: float, axis: str) -> None:
         """``mult(rotation(degrees, axis))`` for axis ``'x'``, ``'y'`` or ``'z'`` (rot
         and rotate's valid paths): the rotation's entries are written into this
