@@ -25,6 +25,8 @@ from . import _core
 from ._color import packed_colour
 from ._core import (
     _NO,
+    INT_MAX,
+    INT_MIN,
     GLUsageError,
     GLValueError,
     as_float,
@@ -68,15 +70,52 @@ def _in_range(name: str, args: tuple, what: str, v, lo: int, hi: int, why: str =
     return iv
 
 
+def _register_call(attr: str, lo: int = INT_MIN, hi: int = INT_MAX, *, boolean: bool = False,
+                   wrap: bool = False):
+    """Give a one-int register call's validated body a valid path (FAST_CALLS), as
+    zwritemask's: an int (or GL token) in ``lo..hi`` is stored in ``RasterRegisters.<attr>`` --
+    ``v != 0`` with ``boolean``; with ``wrap`` any int, reduced modulo 2**32 -- and the
+    snapshot marked dirty, which is what the body's ``regs.set(attr=...)`` does for
+    such a value; anything else (recording, keywords, a wrong count or type, a value
+    out of range) runs the body, which validates and raises as before."""
+
+    def deco(body):
+        name = body.__name__
+
+        def general(*args, **kwargs) -> None:
+            if kwargs or session.recording is not None or len(args) != 1:
+                return record_or_refuse(call, args, kwargs)
+            body(*args)
+
+        def call(v=_NO, /, *more, **kw) -> None:
+            ctx = session.imm
+            t = type(v)
+            if ctx is None or kw or more or (t is not int and t is not Token):
+                return general(*given((v,), more), **kw)
+            if t is Token:
+                v = int(v)  # (a GL token: stored as the plain int as_int gives)
+            if not (wrap or lo <= v <= hi):
+                return general(v, *more)
+            regs = ctx.raster
+            setattr(regs, attr, v & _U32 if wrap else (v != 0) if boolean else v)
+            regs._snapshot = None
+
+        call.__name__ = call.__qualname__ = name
+        call.__doc__ = body.__doc__
+        return gl_function(binds=(1, 1, ("int",)))(call)
+
+    return deco
+
+
 # -- z-buffer ----------------------------------------------------------------------
-@gl_function()
+@_register_call("zbuffer", boolean=True)
 def zbuffer(b: int) -> None:
     """Enable (any non-zero) or disable the z test and z writes (zbuffer(3G))."""
     ctx = current("zbuffer", (b,))
     ctx.raster.set(zbuffer=as_int("zbuffer", (b,), "b", b) != 0)
 
 
-@gl_function()
+@_register_call("zfunc", 0, 7)
 def zfunction(func: int) -> None:
     """Comparison of incoming against stored z, ZF_NEVER..ZF_ALWAYS; ZF_LEQUAL is the
     default (zfunction(3G))."""
@@ -270,7 +309,7 @@ def sclear(sval: int) -> None:
     ctx.clear_planes(CLEAR_STENCIL, stencil=_u32("sclear", (sval,), "sval", sval))
 
 
-@gl_function()
+@_register_call("swritemask", wrap=True)
 def swritemask(mask: int) -> None:
     """Which stencil bits may change; bits above the configured planes are ignored
     (swritemask(3G))."""
@@ -406,14 +445,14 @@ def logicop(opcode: int) -> None:
 
 
 # -- faces and shading -----------------------------------------------------------------
-@gl_function()
+@_register_call("backface", boolean=True)
 def backface(b: int) -> None:
     """Cull polygons whose window-space vertices run clockwise (backface(3G))."""
     ctx = current("backface", (b,))
     ctx.raster.set(backface=as_int("backface", (b,), "b", b) != 0)
 
 
-@gl_function()
+@_register_call("frontface", boolean=True)
 def frontface(b: int) -> None:
     """Cull counter-clockwise (front-facing) polygons (frontface(3G))."""
     ctx = current("frontface", (b,))
@@ -426,7 +465,7 @@ def getbackface() -> int:
     return int(bool(current("getbackface").raster.backface))
 
 
-@gl_function()
+@_register_call("shademodel", int(GL.FLAT), int(GL.GOURAUD))
 def shademodel(mode: int) -> None:
     """FLAT (last vertex's colour) or GOURAUD, the default (shademodel(3G))."""
     args = (mode,)
@@ -445,7 +484,7 @@ def getsm() -> int:
 
 
 # -- lines and points ----------------------------------------------------------------------
-@gl_function()
+@_register_call("linewidth", 1, _SHORT_MAX)
 def linewidth(n: int) -> None:
     """Line width in pixels, at least 1 (linewidth(3G))."""
     ctx = current("linewidth", (n,))
