@@ -2,6 +2,7 @@
 
     python bench/startup.py [--rounds N] [--workload triangle|shadows|all]
                             [--python NAME=PATH ...] [--serial]
+                            [--variant NAME=VAR=VALUE[,VAR=VALUE...] ...]
 
 Each measurement is one new ``python -c`` process: the time runs from just before
 the process is started to the moment its first image exists, so it includes the
@@ -23,8 +24,12 @@ Workloads:
 e.g. one whose editable install is an older checkout: rounds alternate between
 them, so that a change of machine load hits every variant alike; compare the
 ratios.  ``--serial`` sets VGXSIM_PARALLEL_COMPILE=0 in a second variant of this
-interpreter.  A ``python -c "import numba"`` line gives the floor no vgxsim change
-can go below.  Medians are printed with the load average before and after.
+interpreter.  ``--variant`` (repeatable) adds this interpreter with other
+environment variables, e.g.
+``--variant stock=VGXSIM_LINEAR_INLINE=0,VGXSIM_LAZY_REFRESH=0`` for the start-up
+switches off (docs/architecture.md).  A ``python -c "import numba"`` line gives
+the floor no vgxsim change can go below.  Medians are printed with the load
+average before and after.
 """
 
 from __future__ import annotations
@@ -168,6 +173,9 @@ def main(argv=None) -> int:
     ap.add_argument("--warm-runs", type=int, default=3, help="warm runs per cold run")
     ap.add_argument("--workload", choices=(*WORKLOADS, "all"), default="triangle")
     ap.add_argument("--python", action="append", default=[], metavar="NAME=PATH")
+    ap.add_argument("--variant", action="append", default=[],
+                    metavar="NAME=VAR=VALUE[,VAR=VALUE...]",
+                    help="also this interpreter with these environment variables")
     ap.add_argument("--compiles", action="store_true",
                     help="list the compiles of each workload's first image and exit")
     ap.add_argument("--serial", action="store_true",
@@ -179,6 +187,10 @@ def main(argv=None) -> int:
     for spec in args.python:
         name, _, path = spec.partition("=")
         variants.append((name, path, {}))
+    for spec in args.variant:
+        name, _, assigns = spec.partition("=")
+        env = dict(a.split("=", 1) for a in assigns.split(",") if a)
+        variants.append((name, sys.executable, env))
     names = list(WORKLOADS) if args.workload == "all" else [args.workload]
     if args.compiles:
         for w in names:

@@ -23,6 +23,13 @@ top-level ``kernels`` module (a different PyPI package has that name).
 
 # Before any kernel module is imported (their dispatchers pick a cache locator when
 # decorated): every cached kernel is keyed by the content of all kernel sources.
+# Then the start-up edits to Numba, each behind its own switch: the inliner copies
+# IR in linear time (cold start, kernels/inline_copy.py), cache loads skip the
+# registry refresh (warm start, kernels/lazy_refresh.py).
 from . import cache_stamp as _cache_stamp
+from . import inline_copy as _inline_copy
+from . import lazy_refresh as _lazy_refresh
 
 _cache_stamp.install()
+_inline_copy.install()
+_lazy_refresh.install()
