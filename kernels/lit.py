@@ -204,6 +204,13 @@ def lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gd
         else:
             lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
                       lt, eq, gt, True, slt, seq, sgt, sm, sr, False, wm32, cbuf, zbuf, sten)
+    elif add and (not lt) and eq and (not gt) and (not slt) and seq and (not sgt):
+        # Heidmann's lit pass (zfunction(ZF_EQUAL), stencil EQUAL, ONE+ONE) with its
+        # comparison codes as constants: one compare each instead of three and the
+        # masks of their outcome bits (the same values).
+        lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                  False, True, False, False, False, True, False, sm, sr, True, wm32, cbuf,
+                  zbuf, sten)
     elif add:
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
                   lt, eq, gt, False, slt, seq, sgt, sm, sr, True, wm32, cbuf, zbuf, sten)
