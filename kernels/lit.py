@@ -150,13 +150,38 @@ def add_sat_swar32(s, d):
 
 
 @inline
+def mix_sa32(s, d, a):
+    """:func:`.fragment.mix_sa` on int32 lanes: at most (255*255 + 127) * 32897 =
+    2143305344 < 2**31, so no product overflows."""
+    return np.int32(np.int32(np.int32(np.int32(s * a) + np.int32(d * np.int32(255 - a))
+                                      + np.int32(127)) * np.int32(32897)) >> 23)
+
+
+@inline
+def blend_sa_msa32(src, dst):
+    """blendfunction(BF_SA, BF_MSA) of two packed words on int32 lanes (the values of
+    :func:`.fragment.blend_sa_msa`, whose components are those of ``src``)."""
+    a = np.int32(src >> 24)
+    out = np.uint32(mix_sa32(np.int32(src & np.uint32(0xFF)), np.int32(dst & np.uint32(0xFF)), a))
+    for sh in (8, 16):
+        out |= np.uint32(np.uint32(mix_sa32(np.int32((src >> sh) & np.uint32(0xFF)),
+                                            np.int32((dst >> sh) & np.uint32(0xFF)), a)) << sh)
+    return np.uint32(out | np.uint32(np.uint32(mix_sa32(a, np.int32(dst >> 24), a)) << 24))
+
+
+@inline
 def blend_lanes(ok, src, dst, add, wm32):
     """The word a pixel of :func:`lit_span_lanes` stores: ``(dst & ~wm) | (out &
-    wm)`` where the tests passed (``out`` the source, or with ``add`` its
-    saturating sum with ``dst``), else ``dst``, by masks only: the mask ``wm & -ok``
-    hides the select from LLVM, which would otherwise store through a masked store
-    (vpmaskmovd: microcoded and slow on AMD)."""
-    out = add_sat_swar32(src, dst) if add else src
+    wm)`` where the tests passed (``out`` the source; ``add`` 1: its saturating sum
+    with ``dst``; 2: blendfunction(BF_SA, BF_MSA)), else ``dst``, by masks only: the
+    mask ``wm & -ok`` hides the select from LLVM, which would otherwise store
+    through a masked store (vpmaskmovd: microcoded and slow on AMD)."""
+    if add == 2:
+        out = blend_sa_msa32(src, dst)
+    elif add == 1:
+        out = add_sat_swar32(src, dst)
+    else:
+        out = src
     mm = np.uint32(wm32 & np.uint32(np.uint32(0) - np.uint32(ok)))
     return np.uint32(np.uint32(dst & ~mm) | np.uint32(out & mm))
 
@@ -165,7 +190,8 @@ def blend_lanes(ok, src, dst, add, wm32):
 def lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
               lt, eq, gt, zwrite, slt, seq, sgt, sm, sr, add, wm32, cbuf, zbuf, sten):
     """One row of :func:`lit_span_lanes` (``zwrite``, ``add``: constants in each
-    call, so each call is its own loop with no branch on them)."""
+    call, so each call is its own loop with no branch on them; ``add`` as in
+    :func:`blend_lanes`)."""
     for x in range(xl, xr + 1):
         ux = np.uintp(x)
         dx = np.float64(np.int32(x)) - x0
@@ -200,20 +226,42 @@ def lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gd
     if zwrite:
         if add:
             lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                      lt, eq, gt, True, slt, seq, sgt, sm, sr, True, wm32, cbuf, zbuf, sten)
+                      lt, eq, gt, True, slt, seq, sgt, sm, sr, 1, wm32, cbuf, zbuf, sten)
         else:
             lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                      lt, eq, gt, True, slt, seq, sgt, sm, sr, False, wm32, cbuf, zbuf, sten)
+                      lt, eq, gt, True, slt, seq, sgt, sm, sr, 0, wm32, cbuf, zbuf, sten)
     elif add and (not lt) and eq and (not gt) and (not slt) and seq and (not sgt):
         # Heidmann's lit pass (zfunction(ZF_EQUAL), stencil EQUAL, ONE+ONE) with its
         # comparison codes as constants: one compare each instead of three and the
         # masks of their outcome bits (the same values).
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                  False, True, False, False, False, True, False, sm, sr, True, wm32, cbuf,
+                  False, True, False, False, False, True, False, sm, sr, 1, wm32, cbuf,
                   zbuf, sten)
     elif add:
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                  lt, eq, gt, False, slt, seq, sgt, sm, sr, True, wm32, cbuf, zbuf, sten)
+                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 1, wm32, cbuf, zbuf, sten)
     else:
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                  lt, eq, gt, False, slt, seq, sgt, sm, sr, False, wm32, cbuf, zbuf, sten)
+                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 0, wm32, cbuf, zbuf, sten)
+
+
+@callee
+def alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                     lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, cbuf, zbuf,
+                     sten):
+    """render._alpha_span (blendfunction(BF_SA, BF_MSA), z test on) on 32-bit lanes,
+    for spans :func:`lanes_ok` allows: the loop of :func:`lit_span_lanes` with the
+    alpha blend of :func:`blend_sa_msa32`."""
+    zlo = np.float64(zmin)
+    zhi = np.float64(zmax)
+    wm32 = np.uint32(wm)
+    sm = np.int32(smask & 0xFF if stest else 0)
+    sr = np.int32(min(max(sref, -1), 256) if stest else 0)
+    if not stest:
+        slt, seq, sgt = False, True, False
+    if zwrite:
+        lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                  lt, eq, gt, True, slt, seq, sgt, sm, sr, 2, wm32, cbuf, zbuf, sten)
+    else:
+        lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 2, wm32, cbuf, zbuf, sten)

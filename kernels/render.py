@@ -77,7 +77,7 @@ from .fragment import (
     wrap_z24,
     write_z,
 )
-from .lit import LIT_MIN_SPAN, lanes_ok, lit_span, lit_span_lanes
+from .lit import LIT_MIN_SPAN, alpha_span_lanes, lanes_ok, lit_span, lit_span_lanes
 from .options import callee, inline_ir, jit
 from .raster import covers, row_span
 from .small import NARROW as SMALL_NARROW
@@ -447,7 +447,13 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
         sref = st[S_SREF] & smask
         slt, seq, sgt = cmp_bits(sfunc)
         add = blend == CBLEND_ADD
-        if blend == CBLEND_SA_MSA:
+        if (blend == CBLEND_SA_MSA and lit_lanes and vector_pack
+                and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
+                             adx)):
+            alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
+                             bdx, adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt,
+                             smask, sref, wm, cbuf, zbuf, sten)
+        elif blend == CBLEND_SA_MSA:
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)

@@ -23,7 +23,16 @@ from test_lit_spans import _render, _scene
 from vgxsim import threads
 from vgxsim.batch import CommandBatch
 from vgxsim.kernels.fragment import channel_i32, cmp_bits
-from vgxsim.kernels.lit import LANES_A, LANES_D, channel_clamp, lanes_ok, lit_span, lit_span_lanes
+from vgxsim.kernels.lit import (
+    LANES_A,
+    LANES_D,
+    alpha_span_lanes,
+    channel_clamp,
+    lanes_ok,
+    lit_span,
+    lit_span_lanes,
+)
+from vgxsim.kernels.render import _alpha_span
 
 W, H = 160, 96
 
@@ -68,17 +77,28 @@ def _rows(p, fz, zw, st, ad, wms, zbuf0, sten0, cbuf0, lanes):
         zmin, zmax = fz[r, 4], fz[r, 5]
         args_ok = lanes_ok(xl, xr, p[r, 10], p[r, 0], p[r, 1], zmin, zmax, p[r, 2], p[r, 3],
                            p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9])
-        if lanes and args_ok:
+        if ad[r] == 2 and lanes and args_ok:
+            taken += 1
+            alpha_span_lanes(uy, xl, xr, p[r, 0], p[r, 1], p[r, 10], zmin, zmax, p[r, 2],
+                             p[r, 3], p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9], lt,
+                             eq, gt, zw[r], st[r], slt, seq, sgt, smask, sref, wm, cbuf, zbuf,
+                             sten)
+        elif ad[r] == 2:
+            _alpha_span(uy, xl, xr, p[r, 0], p[r, 1], p[r, 10], zmin, zmax, p[r, 2], p[r, 3],
+                        p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9], lt, eq, gt, zw[r],
+                        st[r], slt, seq, sgt, smask, sref, wm, ~wm & 0xFFFFFFFF, cbuf, zbuf,
+                        sten)
+        elif lanes and args_ok:
             taken += 1
             lit_span_lanes(uy, xl, xr, p[r, 0], p[r, 1], p[r, 10], zmin, zmax, p[r, 2],
                            p[r, 3], p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9], lt, eq,
-                           gt, zw[r], st[r], slt, seq, sgt, smask, sref, ad[r], wm, cbuf, zbuf,
+                           gt, zw[r], st[r], slt, seq, sgt, smask, sref, ad[r] == 1, wm, cbuf, zbuf,
                            sten)
         else:
             lit_span(uy, xl, xr, p[r, 0], p[r, 1], p[r, 10], zmin, zmax, p[r, 2], p[r, 3],
                      p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9], lt, eq, gt, zw[r],
-                     st[r], slt, seq, sgt, smask, sref, ad[r], wm, ~wm & 0xFFFFFFFF, cbuf, zbuf,
-                     sten)
+                     st[r], slt, seq, sgt, smask, sref, ad[r] == 1, wm, ~wm & 0xFFFFFFFF, cbuf,
+                     zbuf, sten)
     return cbuf, zbuf, sten, taken
 
 
@@ -110,7 +130,7 @@ def _row_cases(rng, n, w):
     fz[:, 5] = np.where(zlim == 0, 0x7FFFFF, np.where(zlim == 1, 30, 2**31 - 1))
     zw = rng.random(n) < 0.5
     st = rng.random(n) < 0.7
-    ad = rng.random(n) < 0.6
+    ad = rng.choice([0, 1, 1, 2], n)  # replace, ONE+ONE, SA+MSA
     wms = rng.choice([0xFFFFFFFF, 0x00FF00FF, 0xFF000000, 0x0F0FF0F0, 0], n).astype(np.int64)
     return p, fz, zw, st, ad, wms
 
@@ -129,6 +149,26 @@ def test_lanes_rows_equal_lit_span():
     for a, b, name in zip(got[:3], want[:3], ("colour", "z", "stencil"), strict=True):
         np.testing.assert_array_equal(a, b, err_msg=name)
     assert (got[0] != cbuf).any() and (got[1] != zbuf).any()
+
+
+def test_alpha_rows_reach_every_mix():
+    # SA+MSA rows over every (source, destination, alpha) byte triple's corner
+    # cases: flat planes with alpha 0, 255 and between, destinations 0 and 255.
+    rng = np.random.default_rng(78)
+    n, w = 64, 96
+    p, fz, zw, st, ad, wms = _row_cases(rng, n, w)
+    p[:, 0:10] = 0.0
+    p[:, 2:6] = rng.choice([0.0, 255.0, 127.6, 1.0, 254.4], (n, 4))
+    p[:, 6:10] = rng.choice([0.0, 2.7, -2.7], (n, 4))
+    fz[:, 0] = 7
+    ad[:] = 2
+    zbuf = np.zeros((n, w), np.int32)
+    sten = np.zeros((n, w), np.uint8)
+    cbuf = rng.choice(np.array([0, 0xFFFFFFFF, 0x80808080, 0x01FE7F00], np.uint32), (n, w))
+    want = _rows(p, fz, zw, st, ad, wms, zbuf, sten, cbuf, False)
+    got = _rows(p, fz, zw, st, ad, wms, zbuf, sten, cbuf, True)
+    assert got[3] == n
+    np.testing.assert_array_equal(got[0], want[0])
 
 
 def test_lit_lanes_change_no_plane():
