@@ -4,7 +4,8 @@
 
 (several switches: all on against all off)
 
-Workloads: the full-screen z+stencil pass and lit pass of bench/scenes.py (one run
+Workloads: the full-screen z+stencil pass, lit pass and lit pass at zfunction(ZF_EQUAL)
+over a depth pass of bench/scenes.py (one run
 queues and flushes the whole batch; units: fragments a rasterizer without work
 skipping would test), the Heidmann 1991 frame at 1280 x 1024 through the IRIS GL
 API, and the dense scene (bench/dense_scene.py, raster only).  Each round runs a
@@ -50,6 +51,7 @@ def _dense():
 WORKLOADS = {
     "zstencil_fill": lambda: scenes.zstencil_fill(),
     "colour_blend_fill": lambda: scenes.colour_blend_fill(),
+    "lit_equal_fill": lambda: scenes.lit_equal_fill(),
     "heidmann_frame": _heidmann,
     "dense_scene": _dense,
 }

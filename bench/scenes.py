@@ -82,6 +82,34 @@ def colour_blend_fill(layers: int = 5):
     return run, layers * W * H
 
 
+def lit_equal_fill(layers: int = 5):
+    """Heidmann's lit pass as the frame runs it: a depth pass lays a tilted
+    full-screen quad (z written, colour masked), then ``layers`` lit layers of the
+    same quad draw with zfunction(ZF_EQUAL), stencil EQUAL 0, blend ONE+ONE and no
+    z write: every fragment is tested (no tile's bounds decide EQUAL) and passes.
+    Units: the lit layers' fragments (the depth pass is timed with them)."""
+    fb = Framebuffer(PlaneConfig(W, H, stencil=8))
+    batch = CommandBatch(fb)
+    depth = RasterState(scissor=(0, W - 1, 0, H - 1), zbuffer=True, wmpack=0,
+                        draw_front=True)
+    lit = RasterState(scissor=(0, W - 1, 0, H - 1), zbuffer=True, zfunc=2, zwritemask=0,
+                      stencil=True, sfunc=2, blend_sf=1, blend_df=1, draw_front=True)
+    xw, yw, _, tris = fullscreen_quads(1)
+    zw = np.array([-3000.0, 1000.0, 2500.0, -1500.0])
+    col = np.random.default_rng(1).random((xw.shape[0], 4))
+    clear = RasterState(scissor=(0, W - 1, 0, H - 1))
+
+    def run():
+        batch.add_clear(2, 0, 0x7FFFFF, 0, clear)
+        batch.add_window_triangles(xw, yw, zw, col, tris, depth)
+        for _ in range(layers):
+            batch.add_window_triangles(xw, yw, zw, col, tris, lit)
+        batch.flush()
+
+    run.batch = batch
+    return run, layers * W * H
+
+
 def small_triangles(count: int = 200_000, area: float = 10.0, seed: int = 0,
                     tile_order: int = 0):
     """``count`` random triangles of about ``area`` pixels through the array path

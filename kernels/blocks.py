@@ -54,6 +54,7 @@ from .fragment import (
     round_z_i32,
     wrap_z24,
 )
+from .lit import lanes_ok, lit_span_lanes
 from .options import callee, inline
 
 
@@ -74,12 +75,13 @@ def add_op_bytes(dpass, smax):
 
 @callee
 def z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab, cbuf,
-                 zbuf, sten, vector_pack):
+                 zbuf, sten, vector_pack, lit_lanes):
     """Row ``uy``, columns ``[xl, xr]`` of triangle ``t``, all inside a TILE_ZPASS
     run: every fragment passes the z test.  ``za`` is the row's depth at column
     ``x0`` (the span loops' expression); ``cbuf`` the one colour buffer
     MODE_COLOUR draws.  The values written are those of the span loops in
-    :mod:`.render` for a passing fragment."""
+    :mod:`.render` for a passing fragment (``lit_lanes``: MODE_COLOUR rows on
+    32-bit lanes where :func:`.lit.lanes_ok` allows)."""
     mode = dv[D_MODE]
     if mode == MODE_ZSTENCIL_ADD:
         lo, hi, d = add_op_bytes(dv[D_DZPASS], dv[D_SMAX])
@@ -101,12 +103,12 @@ def z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab
                 zbuf[uy, np.uintp(x)] = wrap_z24(round_z(za + dzdx * (x - x0), zmin, zmax))
     elif mode == MODE_COLOUR:
         _colour_passed(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf,
-                       zbuf, sten, vector_pack)
+                       zbuf, sten, vector_pack, lit_lanes)
 
 
 @callee
 def _colour_passed(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
-                   sten, vector_pack):
+                   sten, vector_pack, lit_lanes):
     """MODE_COLOUR (blend replace or ONE+ONE) with the z test known to pass: the
     branch-free loop of render._colour_span without the z read and compare."""
     zwrite = dv[D_ZWRITE] != 0
@@ -119,7 +121,14 @@ def _colour_passed(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, c
     slt, seq, sgt = cmp_bits(st[S_SFUNC])
     y = np.int64(uy)
     ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
-    if not (vector_pack and zmin >= -2147483648 and zmax <= 2147483647):
+    if vector_pack and lit_lanes and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba,
+                                              aa, rdx, gdx, bdx, adx):
+        # The lit span loop on 32-bit lanes with the z test ZF_ALWAYS: it passes
+        # here, so the fragment does what this function's loops do.
+        lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                       True, True, True, zwrite, stest, slt, seq, sgt, smask, sref, add, wm,
+                       cbuf, zbuf, sten)
+    elif not (vector_pack and zmin >= -2147483648 and zmax <= 2147483647):
         # The reference form (vector_pack off): int64 conversions, branches.
         for x in range(xl, xr + 1):
             ux = np.uintp(x)

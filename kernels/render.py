@@ -77,7 +77,7 @@ from .fragment import (
     wrap_z24,
     write_z,
 )
-from .lit import LIT_MIN_SPAN, lit_span
+from .lit import LIT_MIN_SPAN, alpha_span_lanes, lanes_ok, lit_span, lit_span_lanes
 from .options import callee, inline_ir, jit
 from .raster import covers, row_span
 from .small import NARROW as SMALL_NARROW
@@ -175,9 +175,12 @@ def gather_band_records(items, lo, hi, p_kind, p_ref, t_edge, t_box, t_z, t_zlim
 def _triangle_rows(
     t, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col, st, dv, tab,
     front, back, zbuf, sten, edge_mode, general_only, skip_tiles, cover_blocks,
-    tight_tiles, step_spans, vector_pack, small_path, block_update, lit_spans, tb, runs, spans,
+    tight_tiles, step_spans, vector_pack, small_path, block_update, lit, tb, runs, spans,
     work, tex,
 ):
+    # lit = (lit_spans, lit_lanes): one argument, as an inlined call of more than
+    # 30 arguments compiles to CALL_FUNCTION_EX, which Numba cannot inline.
+    lit_spans, lit_lanes = lit
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
     xlo = max(t_box[t, 0], st[S_SX0])
@@ -341,7 +344,7 @@ def _triangle_rows(
             uy = np.uintp(y)
             if runs[r, 2] == TILE_ZPASS:
                 z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
-                             cbuf, zbuf, sten, vector_pack)
+                             cbuf, zbuf, sten, vector_pack, lit_lanes)
             elif mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
                     and zmax <= 2147483647:
                 # The shadow-volume pass with z rounded through int32 (vectorizes;
@@ -361,7 +364,8 @@ def _triangle_rows(
                     sten[uy, ux] = min(max(sv, 0), smax)
             elif mode == MODE_COLOUR:
                 _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
-                             cbuf, zbuf, sten, front, back, tab, vector_pack, lit_spans)
+                             cbuf, zbuf, sten, front, back, tab, vector_pack, lit_spans,
+                             lit_lanes)
             elif mode == MODE_ZSTENCIL:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
@@ -418,13 +422,14 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colo
 
 @inline_ir
 def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
-                 sten, front, back, tab, vector_pack, lit_spans):
+                 sten, front, back, tab, vector_pack, lit_spans, lit_lanes):
     """MODE_COLOUR: shaded span of row ``uy`` with read-only stencil, optional z,
     simple blend, into ``cbuf`` (the one colour buffer the state draws).
     ``vector_pack``: the stencil-tested loop packs colour through
     :func:`pack_rgba_i32` (same words, a conversion AVX2 vectorizes);
     ``lit_spans`` (with ``vector_pack``): spans of at least ``LIT_MIN_SPAN`` pixels
-    of the replace and ONE+ONE passes run :func:`.lit.lit_span`."""
+    of the replace and ONE+ONE passes run :func:`.lit.lit_span`, or with
+    ``lit_lanes``, where :func:`.lit.lanes_ok` allows, :func:`.lit.lit_span_lanes`."""
     ztest = dv[D_ZTEST] != 0
     zwrite = dv[D_ZWRITE] != 0
     lt, eq, gt = cmp_bits(st[S_ZFUNC])
@@ -442,17 +447,30 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
         sref = st[S_SREF] & smask
         slt, seq, sgt = cmp_bits(sfunc)
         add = blend == CBLEND_ADD
-        if blend == CBLEND_SA_MSA:
+        if (blend == CBLEND_SA_MSA and lit_lanes and vector_pack
+                and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
+                             adx)):
+            alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
+                             bdx, adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt,
+                             smask, sref, wm, cbuf, zbuf, sten)
+        elif blend == CBLEND_SA_MSA:
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)
         elif (lit_spans and vector_pack and xr - xl + 1 >= LIT_MIN_SPAN
               and zmin >= -2147483648 and zmax <= 2147483647):
             # The same loop compiled on its own (kernels/lit.py: inside this kernel
-            # its invariants are spilled and reloaded on every pixel).
-            lit_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
-                     adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
-                     add, wm, keep, cbuf, zbuf, sten)
+            # its invariants are spilled and reloaded on every pixel), on 32-bit lanes
+            # where the planes' values are bounded (lit_lanes).
+            if lit_lanes and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba, aa, rdx,
+                                      gdx, bdx, adx):
+                lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
+                               bdx, adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt,
+                               smask, sref, add, wm, cbuf, zbuf, sten)
+            else:
+                lit_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
+                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask,
+                         sref, add, wm, keep, cbuf, zbuf, sten)
         elif (dv[D_STENCIL] != 0 and vector_pack and zmin >= -2147483648
               and zmax <= 2147483647):
             # Heidmann's lit pass (stencil test, ONE+ONE): the switch is tested once
@@ -645,7 +663,7 @@ def render_bands(
     states, derived, tables,
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
-    small_path, block_update, lit_spans, work, tex,
+    small_path, block_update, lit_spans, lit_lanes, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -703,6 +721,10 @@ def render_bands(
         With ``vector_pack``: long spans of the lit and ambient passes (z test,
         replace or ONE+ONE) run the out-of-line loop of :mod:`.lit` (a switch, on by
         default; same planes).
+    lit_lanes : bool
+        With ``lit_spans``: those spans, and the block update's lit and ambient
+        rows, on 32-bit lanes where every plane's values are bounded
+        (:func:`.lit.lit_span_lanes`; a switch, on by default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -744,7 +766,7 @@ def render_bands(
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
                     cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
-                    lit_spans, tb, runs,
+                    (lit_spans, lit_lanes), tb, runs,
                     spans, bw,
                     tex,
                 )

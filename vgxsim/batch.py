@@ -147,6 +147,12 @@ class CommandBatch:
         passes (z test, replace or ONE+ONE blend) run a span loop compiled on its
         own (vgxsim/kernels/lit.py), which LLVM keeps in registers; on by default,
         the same planes either way.
+    lit_lanes : bool
+        With ``lit_spans``: those spans, and the block update's lit and ambient
+        rows, run on 32-bit lanes (vgxsim/kernels/lit.py lit_span_lanes: no NaN
+        tests, clamps without floor, int32 compares and selects by masks) where
+        every plane's values over the span are bounded so that those forms give the
+        same values; on by default, the same planes either way.
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy
@@ -175,6 +181,7 @@ class CommandBatch:
     small_path = True
     block_update = True
     lit_spans = True
+    lit_lanes = True
     band_records = True
     scatter_bins = True
 
@@ -711,7 +718,8 @@ class CommandBatch:
             self.c_vals, self.c_state, states, derived, tables,
             front, back, z, st, self.edge_mode, self.general_only,
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
-            self.vector_pack, self.small_path, self.block_update, self.lit_spans, work,
+            self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
+            work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
