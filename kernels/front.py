@@ -64,8 +64,8 @@ def front_vertices(obj, mvp, gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, 
 
     Parameters
     ----------
-    obj : ndarray, shape (Nv, 4), float64
-        Homogeneous object coordinates.
+    obj : ndarray, shape (Nv, 4) or (Nv, 3), float64
+        Homogeneous object coordinates (w = 1 where there are three columns).
     mvp : ndarray, shape (4, 4), float64
         Object -> clip (row vectors).
     gx, gy : float
@@ -83,9 +83,12 @@ def front_vertices(obj, mvp, gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, 
     hx = (vp_r - vp_l + 1) / 2.0
     hy = (vp_t - vp_b + 1) / 2.0
     hz = (zfar - znear) / 2.0
+    homogeneous = obj.shape[1] > 3
     for i in range(v0, v1):
         # transform_points' order: ((p0*m0j + p1*m1j) + p2*m2j) + p3*m3j.
-        p0, p1, p2, p3 = obj[i, 0], obj[i, 1], obj[i, 2], obj[i, 3]
+        # (Nv, 3) rows are (x, y, z, 1): 1.0 * m is m, the value of a w column of ones.
+        p0, p1, p2 = obj[i, 0], obj[i, 1], obj[i, 2]
+        p3 = obj[i, 3] if homogeneous else 1.0
         cx = ((p0 * mvp[0, 0] + p1 * mvp[1, 0]) + p2 * mvp[2, 0]) + p3 * mvp[3, 0]
         cy = ((p0 * mvp[0, 1] + p1 * mvp[1, 1]) + p2 * mvp[2, 1]) + p3 * mvp[3, 1]
         cz = ((p0 * mvp[0, 2] + p1 * mvp[1, 2]) + p2 * mvp[2, 2]) + p3 * mvp[3, 2]

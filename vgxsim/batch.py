@@ -515,8 +515,8 @@ class CommandBatch:
 
         Parameters
         ----------
-        obj : ndarray, shape (Nv, 4), float64
-            Homogeneous object coordinates.
+        obj : ndarray, shape (Nv, 4) or (Nv, 3), float64
+            Homogeneous object coordinates (w = 1 where there are three columns).
         mvp : ndarray, shape (4, 4), float64
         viewport : tuple of 4 int; depth : tuple of 2 float
             Inclusive viewport and lsetdepth range.

@@ -174,10 +174,7 @@ def _plain_batch(batch) -> bool:
 def _draw_fused(batch, rs: RasterState, view: Viewing, obj, rgba, tris, flat_rgba,
                 tri_states) -> int:
     """:func:`draw_triangles` through the fused front end (``FUSED_FRONT``)."""
-    obj = np.asarray(obj, dtype=np.float64)
-    if obj.shape[1] == 3:
-        obj = np.concatenate([obj, np.ones((obj.shape[0], 1))], axis=1)
-    obj = np.ascontiguousarray(obj)
+    obj = np.ascontiguousarray(obj, dtype=np.float64)  # (N, 3) or (N, 4): front_vertices
     attr = np.ascontiguousarray(rgba, dtype=np.float64) if rgba is not None else None
     flat = None
     if attr is not None and rs.shademodel == FLAT:

@@ -45,6 +45,19 @@ BATCH_LIGHTING = True
 #: On by default: tests that count or spy on the group path's calls pin it off.
 FLUSH_FRONT = True
 
+#: Fast-path switch: a plain triangle draw of at least ``DIRECT_MIN_VERTICES``
+#: vertices (no lighting, texture, texgen, depthcue, fog; not a concave polygon)
+#: runs its geometry pass before draw_arrays returns, reading the caller's arrays in
+#: place: (N, 3) or (N, 4) float64 coordinates, (N, 4) float64 colours.  Deferred,
+#: the draw needs private copies (the caller may reuse its arrays before the flush):
+#: for 200k 10-pixel triangles those copies and their first-touch page faults cost
+#: about 100 ns a triangle (bench/small_stages.py: as_homogeneous, numpy.array).
+#: The queued draws are committed first, so the order is kept; every geometry stage
+#: works per vertex or per triangle, so committing apart changes no value.  False:
+#: every draw is copied and deferred (tests/pipeline/test_direct_arrays.py compares).
+DIRECT_ARRAYS = True
+DIRECT_MIN_VERTICES = 3072  # below this the copies are cheap and merging draws pays
+
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT = (
     "polygon", "tmesh", "qstrip", "line", "closedline", "point")
 
@@ -331,11 +344,13 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
     ``private`` says the arrays are already private float64 (N, 4) copies;
     ``texcoords`` (N, 2) are per-vertex t2* coordinates (triangles only).
     """
+    direct = False
     if not private:
         obj = np.asarray(obj, dtype=np.float64)
         if obj.ndim != 2 or obj.shape[0] == 0:
             return
-        obj = as_homogeneous(obj)
+        direct = ctx.select_hook is None and _direct(state, kind, obj, normals, texcoords)
+        obj = np.ascontiguousarray(obj) if direct else as_homogeneous(obj)
     n = obj.shape[0]
     if n == 0:
         return
@@ -356,6 +371,16 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
     view = Viewing(state.mvp, state.viewport, state.depth, state.user_planes)
     if kind not in (LINE, CLOSEDLINE, POINT):
         tris, prov = triangles_of(state, kind, n, obj, view, swaps, indices, provoking)
+        if direct:
+            if cols is not None:
+                cols = np.ascontiguousarray(cols)
+            # Drawn now, after the draws queued before it: nothing keeps the caller's
+            # arrays after this call (see DIRECT_ARRAYS); commit_triangles' pass for
+            # one part of one state, without the queue's offset copies of tris.
+            commit_triangles(ctx)
+            flat = None if (cols is None or rs.shademodel != FLAT) else cols[prov]
+            draw_triangles(ctx.raw_batch, rs, view, obj, cols, tris, flat)
+            return
         if cols is not None and not private:
             cols = np.array(cols, dtype=np.float64)
         nrm = None
@@ -386,6 +411,19 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
                                           state.lsbackup)
         return
     draw_points(ctx.raw_batch, rs, view, obj, rgba)
+
+
+def _direct(state: DrawState, kind: str, obj: np.ndarray, normals, texcoords) -> bool:
+    """Whether a draw takes the DIRECT_ARRAYS path: a large plain triangle draw whose
+    stages read (N, 3) coordinates as well as (N, 4) ones (the fused front end and
+    vgxsim.geometry.pipeline.to_clip do; lighting, texgen, depthcue, fog and the
+    concave tessellator read (N, 4))."""
+    return (DIRECT_ARRAYS and obj.shape[0] >= DIRECT_MIN_VERTICES
+            and obj.shape[1] in (3, 4) and kind not in (LINE, CLOSEDLINE, POINT)
+            and not (kind == POLYGON and state.concave)
+            and (normals is None or state.lighting is None) and texcoords is None
+            and state.texgen_eye is None and state.raster.texture == 0
+            and state.depthcue is None and state.fog is None)
 
 
 def triangles_of(state: DrawState, kind, n, obj, view, swaps, indices, provoking):
