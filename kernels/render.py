@@ -61,6 +61,7 @@ from vgxsim.state.codes import (
 )
 
 from .blocks import z_passed_row
+from .borrow import borrow, keep_alive
 from .fragment import (
     add_sat,
     blend_sa_msa,
@@ -79,6 +80,7 @@ from .fragment import (
 )
 from .lit import LIT_MIN_SPAN, alpha_span_lanes, lanes_ok, lit_span, lit_span_lanes
 from .options import callee, inline_ir, jit
+from .prefetch import PREFETCH_DISTANCE, prefetch_box
 from .raster import covers, row_span
 from .small import NARROW as SMALL_NARROW
 from .small import small_mode, small_triangle
@@ -663,7 +665,8 @@ def render_bands(
     states, derived, tables,
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
-    small_path, block_update, lit_spans, lit_lanes, work, tex,
+    small_path, block_update, lit_spans, lit_lanes, prefetch_planes, borrow_arrays, work,
+    tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -725,6 +728,13 @@ def render_bands(
         With ``lit_spans``: those spans, and the block update's lit and ambient
         rows, on 32-bit lanes where every plane's values are bounded
         (:func:`.lit.lit_span_lanes`; a switch, on by default; same planes).
+    prefetch_planes : bool
+        Prefetch the plane rows of the small triangle ``PREFETCH_DISTANCE`` entries
+        ahead (:mod:`.prefetch`; a hint: a switch, on by default; same planes).
+    borrow_arrays : bool
+        Work on views of the arrays without reference counting (:mod:`.borrow`:
+        the inlined helpers' array bindings cost no atomic updates; a switch, on by
+        default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -736,9 +746,21 @@ def render_bands(
     nbands = starts.shape[0] - 1
     ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
     # Tile bounds of one band: (band_h / TILE_H) tile rows of ntiles tiles.
-    tb = np.zeros((ntiles * max(1, band_h >> TILE_H_SHIFT), TB_SIZE), np.int64)
-    runs = np.zeros((ntiles, 3), np.int64)
-    spans = np.zeros((band_h, 2), np.int64)  # a triangle's row spans in one band
+    tb_own = np.zeros((ntiles * max(1, band_h >> TILE_H_SHIFT), TB_SIZE), np.int64)
+    runs_own = np.zeros((ntiles, 3), np.int64)
+    spans_own = np.zeros((band_h, 2), np.int64)  # a triangle's row spans in one band
+    tb, runs, spans = tb_own, runs_own, spans_own
+    if borrow_arrays:
+        # The caller holds the arguments for the whole call; the scratch arrays are
+        # kept alive to the end (keep_alive below).
+        tb, runs, spans = borrow(tb_own), borrow(runs_own), borrow(spans_own)
+        items, p_kind, p_ref = borrow(items), borrow(p_kind), borrow(p_ref)
+        t_edge, t_box, t_z = borrow(t_edge), borrow(t_box), borrow(t_z)
+        t_zlim, t_col, t_state = borrow(t_zlim), borrow(t_col), borrow(t_state)
+        states, derived, tables = borrow(states), borrow(derived), borrow(tables)
+        front, back, zbuf, sten = borrow(front), borrow(back), borrow(zbuf), borrow(sten)
+        work = borrow(work)
+        tex = (borrow(tex[0]), borrow(tex[1]), borrow(tex[2]), borrow(tex[3]))
     for b in range(tid, nbands, nthreads):
         y_lo = b * band_h
         y_hi = min(y_lo + band_h, height) - 1
@@ -750,7 +772,14 @@ def render_bands(
         st = states[0]
         dv = derived[0]
         tab = tables[0]
-        for i in range(starts[b], starts[b + 1]):
+        end = starts[b + 1]
+        for i in range(starts[b], end):
+            if prefetch_planes and i + PREFETCH_DISTANCE < end:
+                q = items[i + PREFETCH_DISTANCE]
+                if p_kind[q] == KIND_TRIANGLE:
+                    u = p_ref[q]
+                    prefetch_box(u, t_state[u], y_lo, y_hi, t_box, states, derived, front,
+                                 back, zbuf, sten)
             p = items[i]
             kind = p_kind[p]
             ref = p_ref[p]
@@ -779,3 +808,4 @@ def render_bands(
                 s = c_state[ref]
                 _clear_rows(ref, y_lo, y_hi, c_vals, states[s], derived[s],
                             front, back, zbuf, sten, tb)
+    keep_alive(tb_own, runs_own, spans_own)

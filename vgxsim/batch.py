@@ -165,6 +165,16 @@ class CommandBatch:
         per band (kernels/band_order.py), instead of listed per band and then
         gathered band by band (each band's pass re-reading the whole record arrays);
         on by default, a switch that changes nothing drawn.
+    prefetch_planes : bool
+        The band kernel prefetches the plane rows of the small triangle a few
+        entries ahead of the one it draws (vgxsim/kernels/prefetch.py: a band of
+        a full window does not fit the cache, and each small triangle's first z
+        and colour reads missed); on by default, a hint that changes nothing drawn.
+    borrow_arrays : bool
+        The band kernel works on views of its arrays that carry no reference count
+        (vgxsim/kernels/borrow.py): the array arguments of the helpers it inlines
+        per triangle cost no atomic count updates; on by default, a switch that
+        changes nothing drawn.
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -184,6 +194,8 @@ class CommandBatch:
     lit_lanes = True
     band_records = True
     scatter_bins = True
+    prefetch_planes = True
+    borrow_arrays = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -719,7 +731,7 @@ class CommandBatch:
             front, back, z, st, self.edge_mode, self.general_only,
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
             self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
-            work,
+            self.prefetch_planes, self.borrow_arrays, work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
