@@ -17,6 +17,7 @@ import numpy as np
 
 from vgxsim.state.codes import CULL_BACK, CULL_FRONT
 
+from .borrow import borrow
 from .clip import ONE
 from .options import inline, inline_ir, jit
 
@@ -132,12 +133,21 @@ def setup_triangles(
 @jit
 def setup_triangles_states(
     xf, yf, zw, col, tris, src, flat_col, states, culls, flat, want_colour,
-    t_edge, t_box, t_z, t_zlim, t_col, t_state, offset,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state, offset, borrow_arrays=False,
 ):
     """:func:`setup_triangles` with a state-table index and a cull mode per triangle
     (``states``, ``culls``: shape (Nt,), int64): one call sets up triangles drawn
     with different fragment state (the 1991 code changes stencil() before every
-    shadow face, nothing else)."""
+    shadow face, nothing else).  ``borrow_arrays``: work on views without reference
+    counts (kernels/borrow.py; CommandBatch.borrow_arrays): the inlined
+    ``_setup_one`` binds its array arguments once a triangle, each binding an atomic
+    count update up and one down (a tenth of a flush of 10-pixel triangles' samples,
+    perf); the records are the same."""
+    if borrow_arrays:  # the caller holds every argument for the whole call
+        xf, yf, zw, col, tris = borrow(xf), borrow(yf), borrow(zw), borrow(col), borrow(tris)
+        src, flat_col, states, culls = borrow(src), borrow(flat_col), borrow(states), borrow(culls)
+        t_edge, t_box, t_z = borrow(t_edge), borrow(t_box), borrow(t_z)
+        t_zlim, t_col, t_state = borrow(t_zlim), borrow(t_col), borrow(t_state)
     n = offset
     for t in range(tris.shape[0]):
         _setup_one(xf, yf, zw, col, tris, src, flat_col, states[t], culls[t], flat,

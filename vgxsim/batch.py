@@ -173,8 +173,9 @@ class CommandBatch:
     borrow_arrays : bool
         The band kernel works on views of its arrays that carry no reference count
         (vgxsim/kernels/borrow.py): the array arguments of the helpers it inlines
-        per triangle cost no atomic count updates; on by default, a switch that
-        changes nothing drawn.
+        per triangle cost no atomic count updates; set-up
+        (kernels/setup.py setup_triangles_states) likewise; on by default, a switch
+        that changes nothing drawn.
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -454,14 +455,15 @@ class CommandBatch:
             pool = threads.pool(nthreads)
             futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, tris[a:b],
                                    src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
-                                   *out, start + a)
+                                   *out, start + a, self.borrow_arrays)
                        for a, b in zip(cuts[:-1], cuts[1:], strict=True) if b > a]
             for f in futures:
                 f.result()
             self.ntris = start + nt
         else:
             self.ntris = setup_triangles_states(xf, yf, zw, colv, tris, src, flatv, idx, culls,
-                                                flat, want_colour, *out, start)
+                                                flat, want_colour, *out, start,
+                                                self.borrow_arrays)
         self._texture_planes(xf, yf, tex, tris, start)
         return start
 
@@ -602,13 +604,13 @@ class CommandBatch:
         cuts = _cuts(used, nthreads if par else 1)
         if len(cuts) <= 1:
             setup_triangles_states(xf, yf, zw, colv, rec_tris, src, flatv, idx, culls, flat,
-                                   want_colour, *out, start)
+                                   want_colour, *out, start, self.borrow_arrays)
         else:
             # Every record owns its slot, so chunks set up in parallel, order unchanged.
             pool = threads.pool(nthreads)
             futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, rec_tris[a:b],
                                    src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
-                                   *out, start + a) for a, b in cuts]
+                                   *out, start + a, self.borrow_arrays) for a, b in cuts]
             for f in futures:
                 f.result()
         self.ntris = end
