@@ -44,8 +44,14 @@ import math
 import numpy as np
 
 from vgxsim.geometry.transform import apply
+from vgxsim.pipeline.decode import drain
+from vgxsim.stream.opcodes import BGN, DRAW_RESTART, DRAW_SEG, END, V
+from vgxsim.stream.recorder import MAX_STREAM_OPS
 
 from ._core import (
+    _NO,
+    INT_MAX,
+    INT_MIN,
     GLTypeError,
     GLUsageError,
     GLValueError,
@@ -55,9 +61,12 @@ from ._core import (
     current,
     describe,
     flat_numbers,
+    given,
     gl_function,
+    record_or_refuse,
+    session,
 )
-from ._draw import apply_ops, coords, lit_mask, stream_call
+from ._draw import _restate_changed, apply_ops, coords, lit_mask, stream_call, sync
 
 __all__ = [
     "rect", "recti", "rects", "rectf", "rectfi", "rectfs",
@@ -240,19 +249,46 @@ rpdr2, rpdr2i, rpdr2s = (_make_rpoly(2, s, False) for s in ("", "i", "s"))
 
 
 # -- move / draw -----------------------------------------------------------------------
+# A draw is recorded in the command stream as one two-vertex segment (BGN DRAW_SEG, the
+# current graphics position and the new point, END), drawn at the flush with the
+# line-style pattern continued from where the last line drawn before it left it;
+# a move under resetls(TRUE) makes the next one a DRAW_RESTART (pattern at 0).  So
+# the pattern runs exactly as when each draw was drawn at its call, which drained
+# the stream and rasterized the segment there (~90 us a call).
+_SEG_OPS = (BGN, DRAW_SEG, V, V, END)
+_RESTART_OPS = (BGN, DRAW_RESTART, V, V, END)
+
+
 def _move_to(ctx, p) -> None:
     ctx.gpos = p
     if ctx.resetls:
-        ctx.linestyle_pos = 0  # a move starts a new polyline: the pattern restarts
+        ctx.ls_restart = True  # a move starts a new polyline: the pattern restarts
 
 
 def _draw_to(ctx, p) -> None:
-    """One segment from the current graphics position, continuing the pattern."""
-    obj = np.array([ctx.gpos, p], dtype=np.float64)
-    cols = np.array([ctx.colour, ctx.colour], dtype=np.float64)
-    nrms = np.array([ctx.normal, ctx.normal], dtype=np.float64)
-    lit = lit_mask(ctx, np.full(2, ctx.last_sent == "normal"))
-    ctx.draw_arrays("line", obj, cols, nrms, lit, pattern_offset=ctx.linestyle_pos)
+    """One segment from the current graphics position, continuing the pattern, in
+    the current colour at both ends (and normal, lit as the last colour/normal call
+    says), transformed by the matrix current now."""
+    st = ctx.stream
+    ops = st.ops
+    if len(ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
+        drain(ctx)
+    snap = ctx.raster._snapshot  # _draw.same_state, inlined (one call less)
+    if not (snap is not None and snap is st.raster and ctx.matrices._mvp is st.mvp
+            and ctx.depth_range is st.depth and ctx.lighting_serial == st.lighting_serial
+            and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
+        _restate_changed(ctx, st)
+    if (ctx.colour is not st.colour or ctx.normal is not st.normal
+            or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)
+    if ctx.ls_restart:
+        ops.extend(_RESTART_OPS)
+        ctx.ls_restart = False
+    else:
+        ops.extend(_SEG_OPS)
+    fl = st.fl
+    fl.extend(ctx.gpos)
+    fl.extend(p)
     ctx.gpos = p
 
 
@@ -262,8 +298,7 @@ def _make_move(base: str, dim: int, suffix: str):
     relative = base.startswith("r")
     drawing = base.endswith("dr") or base.endswith("draw")
 
-    @gl_function(record=True)
-    def call(*args) -> None:
+    def body(*args) -> None:
         ctx = current(name, args)
         _not_in_primitive(ctx, name, args)
         vals = coords(name, args, dim, integer)
@@ -273,6 +308,73 @@ def _make_move(base: str, dim: int, suffix: str):
         else:
             _move_to(ctx, p)
 
+    def general(*args, **kwargs) -> None:
+        if kwargs or session.recording is not None:
+            return record_or_refuse(call, args, kwargs)
+        body(*args)
+
+    # Valid paths (FAST_CALLS): two or three finite floats (the float forms) or ints
+    # of 32 bits (the i/s forms, as float(v), coords' value), outside bgn*/end*;
+    # anything else -- one tuple, a keyword, a wrong count or type, recording --
+    # takes the general path, which validates and raises as it always did.
+    def call2(x=_NO, y=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not float or type(y) is not float
+                or x - x != 0.0 or y - y != 0.0):  # (x - x: NaN for NaN and inf)
+            return general(*given((x, y), more), **kw)
+        if drawing:
+            _draw_to(ctx, (x, y, 0.0, 1.0))
+        else:
+            ctx.gpos = (x, y, 0.0, 1.0)
+            if ctx.resetls:
+                ctx.ls_restart = True
+
+    def call3(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not float or type(y) is not float or type(z) is not float
+                or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
+            return general(*given((x, y, z), more), **kw)
+        if drawing:
+            _draw_to(ctx, (x, y, z, 1.0))
+        else:
+            ctx.gpos = (x, y, z, 1.0)
+            if ctx.resetls:
+                ctx.ls_restart = True
+
+    def call2i(x=_NO, y=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not int or type(y) is not int
+                or not (INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX)):
+            return general(*given((x, y), more), **kw)
+        if drawing:
+            _draw_to(ctx, (float(x), float(y), 0.0, 1.0))
+        else:
+            ctx.gpos = (float(x), float(y), 0.0, 1.0)
+            if ctx.resetls:
+                ctx.ls_restart = True
+
+    def call3i(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not int or type(y) is not int or type(z) is not int
+                or not (INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX
+                        and INT_MIN <= z <= INT_MAX)):
+            return general(*given((x, y, z), more), **kw)
+        if drawing:
+            _draw_to(ctx, (float(x), float(y), float(z), 1.0))
+        else:
+            ctx.gpos = (float(x), float(y), float(z), 1.0)
+            if ctx.resetls:
+                ctx.ls_restart = True
+
+    if relative:
+        call = general
+    else:
+        call = {(2, False): call2, (3, False): call3, (2, True): call2i,
+                (3, True): call3i}[dim, integer]
     call.__name__ = call.__qualname__ = name
     if drawing:
         call.__doc__ = (f"{name}(...): draw a line from the current graphics position to "
@@ -282,7 +384,7 @@ def _make_move(base: str, dim: int, suffix: str):
         call.__doc__ = (f"{name}(...): move the current graphics position "
                         f"{'by' if relative else 'to'} this point; starts a new polyline "
                         f"(move(3G)).")
-    return call
+    return gl_function(record=True, binds=(0, math.inf, ()))(call)
 
 
 move, movei, moves = (_make_move("move", 3, s) for s in ("", "i", "s"))

@@ -324,12 +324,16 @@ def as_homogeneous(obj) -> np.ndarray:
 
 def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colours=None,
                 normals=None, lit=None, swaps=(), indices=None, provoking=None,
-                pattern_offset: int = 0, private: bool = False, texcoords=None) -> None:
+                pattern_offset: int = 0, private: bool = False, texcoords=None,
+                segments=None) -> None:
     """Draw one primitive (or a mesh, with ``indices``) with ``state``.
 
     See :meth:`vgxsim.pipeline.context.Context.draw_arrays` for the parameters;
     ``private`` says the arrays are already private float64 (N, 4) copies;
-    ``texcoords`` (N, 2) are per-vertex t2* coordinates (triangles only).
+    ``texcoords`` (N, 2) are per-vertex t2* coordinates (triangles only);
+    ``segments`` (S, 2) int64, lines only: the vertex pairs to draw, in order, as one
+    polyline's segments (the pattern continues from each to the next), in place of
+    the line's own (draw(3G) segments recorded in a row, pipeline/decode.py).
     """
     if not private:
         obj = np.asarray(obj, dtype=np.float64)
@@ -379,7 +383,8 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
             rgba = np.array(cols, dtype=np.float64)
         rgba = vertex_colour_stage(state, obj, rgba)
     if kind in (LINE, CLOSEDLINE):
-        segs = assembly.line_segments(n, kind == CLOSEDLINE)
+        segs = (assembly.line_segments(n, kind == CLOSEDLINE) if segments is None
+                else segments)
         # resetls(FALSE): the pattern continues from the last line drawn.
         start = int(pattern_offset) if state.resetls else ctx.linestyle_pos
         ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs, start,
