@@ -311,6 +311,13 @@ def test_draw_is_recorded_not_drawn_at_the_call(ctx):
     ("draw2i", (1.5, 2), GLTypeError, "draw2i("),
     ("draw", (1.0, 2.0), GLTypeError, "draw("),
     ("move2", (1.0, 2.0, 3.0), GLTypeError, "move2("),
+    ("rectf", (1.0, 2.0, float("nan"), 3.0), GLValueError, "rectf("),
+    ("rect", (1.0, 2.0, 3.0), GLTypeError, "rect("),
+    ("rectfi", (1, 2, 3.5, 4), GLTypeError, "rectfi("),
+    ("pnt2", (1.0,), GLTypeError, "pnt2("),
+    ("pnt2", ("x", 1.0), GLTypeError, "pnt2("),
+    ("pnt", (1.0, 2.0, float("inf")), GLValueError, "pnt("),
+    ("pnt2i", (1, 2.0), GLTypeError, "pnt2i("),
 ])
 def test_bad_arguments_raise_naming_the_call(ctx, call, args, error, words):
     with pytest.raises(error, match=words.replace("(", r"\(")):
@@ -325,6 +332,10 @@ def test_keyword_and_inside_a_primitive_raise(ctx):
         gl.draw2(1.0, 2.0)
     with pytest.raises(GLUsageError, match=r"move2\("):
         gl.move2(1.0, 2.0)
+    with pytest.raises(GLUsageError, match=r"rectf\("):
+        gl.rectf(1.0, 2.0, 3.0, 4.0)
+    with pytest.raises(GLUsageError, match=r"pnt2\("):
+        gl.pnt2(1.0, 2.0)
     gl.endpolygon()
 
 
