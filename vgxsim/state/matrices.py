@@ -75,6 +75,7 @@ class MatrixState:
         self._saved = None
         self._mvp = None
         self._mv_inv_t = None
+        self._flat: tuple | None = None  # (the mvp, its 16 entries): mvp_flat's memo
         self._pending: list | None = None  # deferred translate() offsets, in call order
         # rotate_axis and scale_by's matrices, overwritten at each call (only their
         # products are kept): identity but for the entries a call writes.
@@ -289,6 +290,16 @@ class MatrixState:
             else:
                 self._mvp = self.modelview[-1] @ self.projection
         return self._mvp
+
+    def mvp_flat(self) -> list[float]:
+        """The :meth:`mvp`'s 16 entries as Python floats, row-major (``m[4 * r + c]``),
+        kept while the mvp object is the same (it is replaced on change, never
+        mutated): for the one-point transforms of the gl layer (cmov(3G))."""
+        m = self.mvp()
+        memo = self._flat
+        if memo is None or memo[0] is not m:
+            memo = self._flat = (m, m.ravel().tolist())
+        return memo[1]
 
     def normal_matrix(self) -> np.ndarray:
         """Inverse transpose of the modelview's upper 3x3 (row-vector form)."""
