@@ -21,6 +21,7 @@ import numpy as np
 from vgxsim import GL
 from vgxsim.geometry import transform as T
 from vgxsim.state.matrices import STACK_DEPTH, MatrixModeError, MatrixStackError
+from vgxsim.tokens import Token
 
 from ._core import (
     _NO,
@@ -104,8 +105,28 @@ def load_window_projection(ctx) -> None:
     ctx.matrices.reset(T.orthographic(-0.5, w - 0.5, -0.5, h - 0.5, -1.0, 1.0))
 
 
-@gl_function(record=True)
-def mmode(*args) -> None:
+def _general_mmode(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None:
+        return record_or_refuse(mmode, args, kwargs)
+    _mmode(*args)
+
+
+@gl_function(record=True, binds=(0, math.inf, ()))
+def mmode(m=_NO, /, *more, **kw) -> None:
+    """mmode(m): select MSINGLE, MPROJECTION, MVIEWING or MTEXTURE (mmode(3G)).
+
+    Entering or leaving MSINGLE empties the matrix stacks and makes every matrix the
+    identity (mmode(3G)); switching among the other three keeps every matrix."""
+    # Valid path (FAST_CALLS): an int or GL token MSINGLE..MTEXTURE (0..3); anything
+    # else takes the general path, which validates and raises as before.
+    ctx = session.imm
+    if (ctx is None or kw or more or (type(m) is not int and type(m) is not Token)
+            or not 0 <= m <= 3):
+        return _general_mmode(*given((m,), more), **kw)
+    ctx.matrices.set_mode(int(m))
+
+
+def _mmode(*args) -> None:
     """mmode(m): select MSINGLE, MPROJECTION, MVIEWING or MTEXTURE (mmode(3G)).
 
     Entering or leaving MSINGLE empties the matrix stacks and makes every matrix the
@@ -457,8 +478,8 @@ def multmatrix(m=_NO, /, *more, **kw) -> None:
 def getmatrix(*args) -> list[float]:
     """getmatrix() -> list of 16 floats, row-major (``m[i][j]`` at ``4*i + j``), the
     form the historical binding returned; it round-trips with loadmatrix."""
-    m = current("getmatrix", args).matrices.get()
-    return [float(x) for x in m.reshape(-1)]
+    # (tolist of a float64 matrix: a new list of the same Python floats as float(x))
+    return current("getmatrix", args).matrices.current().ravel().tolist()
 
 
 # -- the viewport stack and screen-to-world mapping (issue 10) ------------------------------
