@@ -1,6 +1,7 @@
 """Fast paths of the common calls (issue 6 per-call cost) against their general paths.
 
-translate() defers its product (state/matrices.py DEFER_TRANSLATE) and pushmatrix
+translate() defers its product (state/matrices.py DEFER_TRANSLATE; rot, rotate and
+scale join it, DEFER_PRODUCTS) and pushmatrix
 shares the top matrix; cpack, c3f, lmbind, stencil and translate take inlined checks
 for plain ints/floats.  Each must leave exactly the state and planes the general path
 leaves: the deferral is switched off, the inlined checks are bypassed by passing the
@@ -49,8 +50,10 @@ def _scene(seed: int) -> dict[str, np.ndarray]:
             depth -= 1
         elif r < 0.5:
             gl.translate(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1))
-        elif r < 0.55:
+        elif r < 0.53:
             gl.rot(rng.uniform(-90, 90), rng.choice("xyz"))
+        elif r < 0.55:
+            gl.rotate(rng.randrange(-900, 900), rng.choice("xyzX"))
         elif r < 0.6:
             gl.scale(rng.uniform(0.5, 1.5), rng.uniform(0.5, 1.5), 1.0)
         elif r < 0.63:
@@ -74,11 +77,14 @@ def _scene(seed: int) -> dict[str, np.ndarray]:
     return out
 
 
+@pytest.mark.parametrize("switches", [("DEFER_TRANSLATE",), ("DEFER_PRODUCTS",),
+                                      ("DEFER_TRANSLATE", "DEFER_PRODUCTS")])
 @pytest.mark.parametrize("seed", range(4))
-def test_deferred_translate_gives_the_same_planes(gl_window, monkeypatch, seed):
+def test_deferred_translate_gives_the_same_planes(gl_window, monkeypatch, seed, switches):
     gl_window(W, H, rgb=True)
     fast = _scene(seed)
-    monkeypatch.setattr(matrices, "DEFER_TRANSLATE", False)
+    for switch in switches:
+        monkeypatch.setattr(matrices, switch, False)
     gl_window(W, H, rgb=True)
     slow = _scene(seed)
     assert np.any(fast["color"] != 0)  # the scene draws something

@@ -268,7 +268,7 @@ def rotate(a=_NO, axis=_NO, /, *more, **kw) -> None:
     ax = _AXES.get(axis)
     if ax is None:
         return _general_rotate(a, axis)
-    ctx.matrices.rotate_axis(a / 10.0, ax)
+    ctx.matrices.rotate(a / 10.0, ax)  # (deferred: DEFER_PRODUCTS)
 
 
 def _general_rot(*args, **kwargs) -> None:
@@ -294,7 +294,7 @@ def rot(a=_NO, axis=_NO, /, *more, **kw) -> None:
     ax = _AXES.get(axis)
     if ax is None:
         return _general_rot(a, axis)
-    ctx.matrices.rotate_axis(a, ax)
+    ctx.matrices.rotate(a, ax)  # (deferred: DEFER_PRODUCTS)
 
 
 def _general_translate(*args, **kwargs) -> None:
@@ -334,7 +334,7 @@ def scale(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
     if (ctx is None or kw or more or type(x) is not float or type(y) is not float
             or type(z) is not float or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
         return _general_scale(*given((x, y, z), more), **kw)
-    ctx.matrices.scale_by(x, y, z)
+    ctx.matrices.scale(x, y, z)  # (deferred: DEFER_PRODUCTS)
 
 
 def _general_pushmatrix(*args, **kwargs) -> None:
