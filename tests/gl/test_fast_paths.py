@@ -1,7 +1,7 @@
 """Fast paths of the common calls (issue 6 per-call cost) against their general paths.
 
-translate() defers its product (state/matrices.py DEFER_TRANSLATE; rot, rotate and
-scale join it, DEFER_PRODUCTS) and pushmatrix
+translate() defers its product (state/matrices.py DEFER_TRANSLATE; rot, rotate,
+scale, multmatrix and loadmatrix join it, DEFER_PRODUCTS) and pushmatrix
 shares the top matrix; cpack, c3f, lmbind, stencil and translate take inlined checks
 for plain ints/floats.  Each must leave exactly the state and planes the general path
 leaves: the deferral is switched off, the inlined checks are bypassed by passing the
@@ -54,6 +54,15 @@ def _scene(seed: int) -> dict[str, np.ndarray]:
             gl.rot(rng.uniform(-90, 90), rng.choice("xyz"))
         elif r < 0.55:
             gl.rotate(rng.randrange(-900, 900), rng.choice("xyzX"))
+        elif r < 0.57:
+            m = [1.0 + rng.uniform(-0.2, 0.2) if i in (0, 5, 10) else
+                 rng.uniform(-0.2, 0.2) if i not in (3, 7, 11, 15) else 0.0
+                 for i in range(16)]
+            m[15] = 1.0
+            gl.multmatrix(m if rng.random() < 0.5 else tuple(m))
+        elif r < 0.58:
+            gl.loadmatrix([1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+                           rng.uniform(-1, 1), rng.uniform(-1, 1), -6.0, 1.0])
         elif r < 0.6:
             gl.scale(rng.uniform(0.5, 1.5), rng.uniform(0.5, 1.5), 1.0)
         elif r < 0.63:

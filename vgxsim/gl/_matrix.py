@@ -419,7 +419,7 @@ _F64 = np.dtype(np.float64)
 
 
 def _plain_matrix(m) -> np.ndarray | None:
-    """The (4, 4) float64 array of a Matrix given as one list or tuple of 16 plain
+    """The float64 array of 16 of a Matrix given as one list or tuple of 16 plain
     numbers, all finite, else None (the general path decides).  np.array makes a
     float64 vector of such a list only when every element is a float, int or bool
     -- what flat_numbers takes -- and float(v) is its value of each; a string, None,
@@ -434,7 +434,7 @@ def _plain_matrix(m) -> np.ndarray | None:
     t = sum(m)
     if t - t != 0.0:
         return None
-    return a.reshape(4, 4)
+    return a  # (flat: MatrixState reshapes it where the product is formed)
 
 
 def _general_loadmatrix(*args, **kwargs) -> None:
@@ -453,7 +453,7 @@ def loadmatrix(m=_NO, /, *more, **kw) -> None:
     a = None if (ctx is None or kw or more) else _plain_matrix(m)
     if a is None:
         return _general_loadmatrix(*given((m,), more), **kw)
-    ctx.matrices.load_owned(a)
+    ctx.matrices.load_deferred(a)  # (DEFER_PRODUCTS)
 
 
 def _general_multmatrix(*args, **kwargs) -> None:
@@ -471,7 +471,7 @@ def multmatrix(m=_NO, /, *more, **kw) -> None:
     a = None if (ctx is None or kw or more) else _plain_matrix(m)
     if a is None:
         return _general_multmatrix(*given((m,), more), **kw)
-    ctx.matrices.mult_by(a)
+    ctx.matrices.mult_deferred(a)  # (DEFER_PRODUCTS)
 
 
 @gl_function(record=False)

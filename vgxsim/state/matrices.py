@@ -26,8 +26,9 @@ aliasing.  ``translate`` (:data:`DEFER_TRANSLATE`) only notes its offsets; the
 product ``translation @ current`` is formed, with exactly the numpy operations
 ``mult`` would have used and in call order, when the matrix is next read or changed
 (:meth:`MatrixState._settle`), and never when a ``popmatrix`` discards it first;
-rot, rotate and scale's valid paths defer theirs in the same list
-(:data:`DEFER_PRODUCTS`: ``rotate_axis`` and ``scale_by`` replayed in order).
+rot, rotate, scale, multmatrix and loadmatrix's valid paths defer theirs in the same
+list (:data:`DEFER_PRODUCTS`: ``rotate_axis``, ``scale_by``, ``mult_by`` and the
+load's store replayed in order).
 
 A new window starts in MSINGLE with the pixel-unit 2-D projection loaded
 (:meth:`reset`, called by winopen; greset(3G) "loads a 2-D orthographic projection", the
@@ -48,14 +49,16 @@ _IDENTITY.flags.writeable = False
 #: Fast path switch: translate() defers its matrix product until the matrix is read
 #: (False: every translate multiplies at once; the planes are the same either way).
 DEFER_TRANSLATE = True
-#: Fast path switch: rot, rotate and scale's valid paths (:meth:`MatrixState.rotate`,
-#: :meth:`MatrixState.scale`) defer their products with translate's, replayed in
-#: call order by the same rotate_axis and scale_by (False: they multiply at once;
-#: the matrices are the same bit for bit either way).
+#: Fast path switch: rot, rotate, scale, multmatrix and loadmatrix's valid paths
+#: (:meth:`MatrixState.rotate`, :meth:`~MatrixState.scale`,
+#: :meth:`~MatrixState.mult_deferred`, :meth:`~MatrixState.load_deferred`) defer their
+#: products with translate's, replayed in call order by the same rotate_axis,
+#: scale_by, mult_by and store (False: they multiply at once; the matrices are the
+#: same bit for bit either way).
 DEFER_PRODUCTS = True
 
 #: Kinds of a deferred product (MatrixState._pending entries: (kind, *arguments)).
-_TRANSLATE, _ROTATE, _SCALE = 0, 1, 2
+_TRANSLATE, _ROTATE, _SCALE, _MULT, _LOAD = 0, 1, 2, 3, 4
 
 
 def _translation(x: float, y: float, z: float) -> np.ndarray:
@@ -106,8 +109,12 @@ class MatrixState:
                     self.mult(_translation(op[1], op[2], op[3]))
                 elif kind == _ROTATE:
                     self.rotate_axis(op[1], op[2])
-                else:
+                elif kind == _SCALE:
                     self.scale_by(op[1], op[2], op[3])
+                elif kind == _MULT:
+                    self.mult_by(op[1].reshape(4, 4))
+                else:
+                    self._store(op[1].reshape(4, 4))  # (load_owned, settled already)
 
     def translate(self, x: float, y: float, z: float) -> None:
         """``mult(translation(x, y, z))``, deferred (see the module docstring)."""
@@ -131,6 +138,29 @@ class MatrixState:
             self._pending = [(_ROTATE, degrees, axis)]
         else:
             self._pending.append((_ROTATE, degrees, axis))
+        self._mvp = None
+        self._mv_inv_t = None
+
+    def mult_deferred(self, m: np.ndarray) -> None:
+        """:meth:`mult_by` of a float64 array of 16 (or (4, 4)) no one else holds
+        (multmatrix's valid path), deferred as :meth:`rotate`."""
+        if not DEFER_PRODUCTS or self.pick is not None:
+            self.mult_by(m.reshape(4, 4))
+            return
+        if self._pending is None:
+            self._pending = [(_MULT, m)]
+        else:
+            self._pending.append((_MULT, m))
+        self._mvp = None
+        self._mv_inv_t = None
+
+    def load_deferred(self, m: np.ndarray) -> None:
+        """:meth:`load_owned` (loadmatrix's valid path), deferred as :meth:`rotate`:
+        the products noted before it are dropped, as the load would overwrite them."""
+        if not DEFER_PRODUCTS or self.pick is not None:
+            self.load_owned(m.reshape(4, 4))
+            return
+        self._pending = [(_LOAD, m)]
         self._mvp = None
         self._mv_inv_t = None
 
