@@ -4,6 +4,10 @@
 
 Reports, medians over rounds, all measured in this one run:
 
+* ns per call of issue 6's other calls (bench ``other_calls``: move2/draw2, with the
+  flush timed too, pnt2, rectf, cmov2, rot/rotate/scale/multmatrix/loadmatrix less
+  push + pop, getmatrix, afunction, lsetdepth, lmcolor, mmode, frontbuffer,
+  setlinestyle), vgxsim only;
 * ns per call of the common immediate-mode calls (v3f, n3f, c3f, cpack,
   bgnpolygon/endpolygon, stencil, lmbind, zwritemask, wmpack,
   pushmatrix/translate/popmatrix, callobj of a small object), and the nearest
