@@ -20,6 +20,7 @@ import pytest
 from vgxsim import gl
 from vgxsim.gl import _core
 from vgxsim.gl._core import GLTypeError, GLUsageError, GLValueError, session
+from vgxsim.pipeline import draw
 from vgxsim.reference import naive
 
 W, H = 40, 30
@@ -42,7 +43,8 @@ def _coord(rng, hi, integer):
 
 def program(seed: int, n: int = 60) -> list[tuple]:
     rng = random.Random(seed)
-    ops: list[tuple] = [("cpack", 0xFF0000FF)]
+    # (A patterned style from the start: a solid one hides every pattern offset.)
+    ops: list[tuple] = [("cpack", 0xFF0000FF), ("setlinestyle", 1 + seed % 2)]
     for _ in range(n):
         r = rng.random()
         integer = rng.random() < 0.4
@@ -63,7 +65,7 @@ def program(seed: int, n: int = 60) -> list[tuple]:
         elif r < 0.67:
             ops.append(("resetls", rng.randint(0, 1)))
         elif r < 0.72:
-            ops.append(("setlinestyle", rng.choice(list(STYLES))))
+            ops.append(("setlinestyle", rng.choice((1, 1, 2, 2, 3))))
         elif r < 0.75:
             ops.append(("lsrepeat", rng.randint(1, 3)))
         elif r < 0.77:
@@ -198,10 +200,12 @@ def expected(ops: list[tuple]) -> np.ndarray:
 SEEDS = range(8)
 
 
+@pytest.mark.parametrize("merge", [True, False])
 @pytest.mark.parametrize("fast", [True, False])
 @pytest.mark.parametrize("seed", SEEDS)
-def test_immediate_mode_draws_the_naive_lines(ctx, seed, fast, monkeypatch):
+def test_immediate_mode_draws_the_naive_lines(ctx, seed, fast, merge, monkeypatch):
     monkeypatch.setattr(_core, "FAST_CALLS", fast)
+    monkeypatch.setattr(draw, "MERGE_SEGMENTS", merge)
     session.refresh()
     ops = program(seed)
     run(ops, ctx)
@@ -234,6 +238,59 @@ def test_display_objects_draw_the_naive_lines(ctx, seed):
     want = expected(ops)
     got = ctx.colour_buffer("front")
     assert np.array_equal(got, want), int((got != want).sum())
+
+
+#: A restart whose segment lies wholly outside (beyond the far plane, z = 5 under
+#: ortho2's -1..1), last in its run: the position after the run is 0, where the
+#: polyline under resetls(FALSE) then starts.
+_TRAILING_RESTART = [("setlinestyle", 2), ("cpack", 0xFF00FFFF), ("move2", 1.0, 1.0),
+                     ("draw2", 12.0, 1.0), ("move", 3.0, 9.0, 5.0), ("draw", 30.0, 9.0, 5.0),
+                     ("resetls", 0), ("polyline", [(1, 5), (30, 5)])]
+
+
+@pytest.mark.parametrize("seed", [*range(6), "trailing restart"])
+def test_merged_segments_draw_what_one_line_each_draws_clipped_too(gl_window, seed,
+                                                                    monkeypatch):
+    """Segments reaching past the window (clipped: the pattern counts from the
+    clipped start), some wholly outside, restarts among them: MERGE_SEGMENTS on and
+    off give the same planes, as does the same program in a display object."""
+    rng = random.Random(100 + (seed if isinstance(seed, int) else 0))
+    ops: list[tuple] = [("setlinestyle", 2), ("cpack", 0xFF00FFFF)]
+    for _ in range(80 if isinstance(seed, int) else 0):
+        r = rng.random()
+        p = (rng.uniform(-30.0, W + 30.0), rng.uniform(-30.0, H + 30.0))
+        if r < 0.55:
+            ops.append(("draw2", *p))
+        elif r < 0.75:
+            ops.append(("move2", *p))
+        elif r < 0.8:
+            ops.append(("resetls", rng.randint(0, 1)))
+        elif r < 0.85:
+            ops.append(("lsrepeat", rng.randint(1, 2)))
+        elif r < 0.9:
+            ops.append(("cpack", 0xFF000000 | rng.randrange(1, 1 << 24)))
+        else:
+            ops.append(("polyline", [(rng.randrange(-5, W + 5), rng.randrange(-5, H + 5))
+                                     for _ in range(3)]))
+    if not isinstance(seed, int):
+        ops = _TRAILING_RESTART
+    out = []
+    for merge, objects in ((True, False), (False, False), (True, True)):
+        monkeypatch.setattr(draw, "MERGE_SEGMENTS", merge)
+        c = gl_window(W, H)
+        for i, st in STYLES.items():
+            gl.deflinestyle(i, st)
+        if objects:
+            gl.makeobj(1)
+            run(ops, c)
+            gl.closeobj()
+            gl.callobj(1)
+        else:
+            run(ops, c)
+        out.append(c.colour_buffer("front").copy())
+    assert out[0].any()
+    assert np.array_equal(out[0], out[1])
+    assert np.array_equal(out[0], out[2])
 
 
 def _bgnline_row3():

@@ -157,12 +157,12 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
     # differ at most in fragment state) and one lmcolor_set.
     brk = np.ones(npr, bool)
     brk[1:] = ~(tri[1:] & tri[:-1] & (key[1:] == key[:-1]))
-    # ... or: draw(3G) segments continuing the one before under the same record
-    # (one polyline of disjoint segments: the pattern runs on from each to the next).
-    seg = (kinds == DRAW_SEG) | (kinds == DRAW_RESTART)
-    brk[1:] &= ~((kinds[1:] == DRAW_SEG) & seg[:-1]
-                 & (prims[1:, P_STATE] == prims[:-1, P_STATE])
-                 & (prims[1:, P_LMCOLOR_SET] == prims[:-1, P_LMCOLOR_SET]))
+    # ... or: draw(3G) segments after one under the same record (one polyline of
+    # disjoint segments: the pattern runs on from each to the next, or restarts).
+    if draw.MERGE_SEGMENTS:
+        seg = (kinds == DRAW_SEG) | (kinds == DRAW_RESTART)
+        brk[1:] &= ~(seg[1:] & seg[:-1] & (prims[1:, P_STATE] == prims[:-1, P_STATE])
+                     & (prims[1:, P_LMCOLOR_SET] == prims[:-1, P_LMCOLOR_SET]))
     first = np.flatnonzero(brk)
     starts = first.tolist()
     ends = starts[1:] + [npr]
@@ -192,18 +192,18 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
         sl = slice(v0, v1)
         lit = _lit(state, sent[sl])
         if kind == DRAW_SEG or kind == DRAW_RESTART:
+            restarts = prims[a:b, P_KIND] == DRAW_RESTART
             if state.lsbackup and b - a > 1:
                 # lsbackup(3G) draws the last two pixels of each line: one job a
                 # segment (each its own polyline), as drawn at the call.
                 for r in range(a, b):
                     ps = slice(v0 + 2 * (r - a), v0 + 2 * (r - a) + 2)
-                    jobs.append((_draw_segments, (ctx, r == a and kind == DRAW_RESTART,
-                                                  state, bool(lms), pos[ps], col[ps],
-                                                  nrm[ps], lit[2 * (r - a):2 * (r - a) + 2]),
-                                 {}))
+                    jobs.append((_draw_segments, (ctx, restarts[r - a:r - a + 1], state,
+                                                  bool(lms), pos[ps], col[ps], nrm[ps],
+                                                  lit[2 * (r - a):2 * (r - a) + 2]), {}))
                 continue
-            jobs.append((_draw_segments, (ctx, kind == DRAW_RESTART, state, bool(lms),
-                                          pos[sl], col[sl], nrm[sl], lit), {}))
+            jobs.append((_draw_segments, (ctx, restarts, state, bool(lms), pos[sl], col[sl],
+                                          nrm[sl], lit), {}))
             continue
         if not tri_l[g]:
             # Lines and points: one primitive per group (the line-style pattern
@@ -247,20 +247,20 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
         fn(*args, **kw)
 
 
-def _draw_segments(ctx, restart: bool, state, lms: bool, pos, col, nrm, lit) -> None:
-    """draw(3G) segments recorded in a row under one record (a DRAW_SEG or
-    DRAW_RESTART row and the DRAW_SEG rows after it, two vertices each): one
-    polyline whose pattern starts where the last line drawn before it left
+def _draw_segments(ctx, restarts: np.ndarray, state, lms: bool, pos, col, nrm, lit) -> None:
+    """draw(3G) segments recorded in a row under one record (DRAW_SEG and
+    DRAW_RESTART rows, two vertices each; ``restarts`` says which are the latter):
+    one polyline whose pattern starts where the last line drawn before it left
     Context.linestyle_pos -- read here, when the jobs run in drawing order, not when
-    the rows were collected -- or at 0 after a move under resetls(TRUE), and runs on
-    from segment to segment (docs/numeric_model.md s. 5), as when each draw was
-    drawn at its call."""
-    if restart:
+    the rows were collected -- runs on from segment to segment and is at 0 at each
+    restart, a move under resetls(TRUE) before it (docs/numeric_model.md s. 5), as
+    when each draw was drawn at its call."""
+    if restarts[0]:
         ctx.linestyle_pos = 0
     n = pos.shape[0] // 2
     segs = np.arange(2 * n, dtype=np.int64).reshape(n, 2)
     draw_arrays(ctx, state, lms, "line", pos, col, nrm, lit, pattern_offset=ctx.linestyle_pos,
-                private=True, segments=segs)
+                private=True, segments=segs, restarts=restarts if n > 1 else None)
 
 
 def _wants_colour(state) -> bool:
