@@ -420,3 +420,37 @@ def test_pick_hits_draw_segments_under_their_names(fresh_session):
     gl.loadname(9)
     gl.draw2i(0, 20)  # from (100, 80) to (0, 20): through (50, 50)
     assert gl.endpick() == [1, 7, 1, 9]
+
+
+def test_a_move_while_picking_restarts_the_pattern_after_it(ctx, gl_window):
+    """A move under resetls(TRUE) inside pick mode puts the position at 0, and no
+    picked line moves it: a draw after endpick that continues (no move) starts the
+    pattern at 0, as it does drawn first in a fresh window."""
+    from vgxsim import DEVICE
+    from vgxsim.events import EventQueue
+
+    gl.setlinestyle(2)
+    gl.cpack(0xFFFFFFFF)
+    gl.move2i(1, 1)
+    gl.draw2i(8, 1)  # the position is 7 after it
+    session.queue = EventQueue()
+    session.queue.post(DEVICE.MOUSEX, 20)
+    session.queue.post(DEVICE.MOUSEY, 20)
+    gl.pick(10)
+    gl.move2i(2, 20)
+    gl.draw2i(30, 20)
+    gl.endpick()
+    gl.resetls(0)
+    gl.move2i(1, 10)  # (no restart under resetls(FALSE))
+    gl.draw2i(35, 10)  # continues from the position the pick left: 0
+    got = ctx.colour_buffer("front")
+    gl_window(W, H)
+    for i, st in STYLES.items():
+        gl.deflinestyle(i, st)
+    gl.setlinestyle(2)
+    gl.cpack(0xFFFFFFFF)
+    gl.move2i(1, 10)
+    gl.draw2i(35, 10)
+    one = session.windows[1].colour_buffer("front")
+    assert one[10].any()
+    assert np.array_equal(got[10], one[10])

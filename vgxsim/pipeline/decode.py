@@ -101,6 +101,10 @@ def _select_prims(ctx, records, pos, prims, swaps, clears) -> None:
         if kind == CLEAR_KIND:
             _clear(ctx, clears[r[P_CLEAR]])
             continue
+        if kind == DRAW_RESTART:
+            # A move under resetls(TRUE) put the position at 0 while picking too
+            # (nothing picked moves it on).
+            ctx.linestyle_pos = 0
         if v1 == v0:
             continue
         # (draw(3G) segments are lines to the hit test)
