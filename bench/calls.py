@@ -4,6 +4,10 @@
 
 Reports, medians over rounds, all measured in this one run:
 
+* ns per call of issue 6's other calls (bench ``other_calls``: move2/draw2, with the
+  flush timed too, pnt2, rectf, cmov2, rot/rotate/scale/multmatrix/loadmatrix less
+  push + pop, getmatrix, afunction, lsetdepth, lmcolor, mmode, frontbuffer,
+  setlinestyle), vgxsim only;
 * ns per call of the common immediate-mode calls (v3f, n3f, c3f, cpack,
   bgnpolygon/endpolygon, stencil, lmbind, zwritemask, wmpack,
   pushmatrix/translate/popmatrix, callobj of a small object), and the nearest
@@ -235,6 +239,120 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
         out[f"{name}, REPLAY_OBJECTS on"] = ab[True] / per
     gl.zwritemask(0xFFFFFFFF)
     gl.wmpack(0xFFFFFFFF)
+    gl.winclose(gid)
+    return out
+
+
+def other_calls(rounds: int) -> dict[str, float]:
+    """ns per call of the calls outside the common set that issue 6 brings under 1 us
+    (old-style drawing, matrix and state calls), each loop of N_CALLS calls (or
+    groups) on its own 64 x 64 window; drawing rows flush after each round, untimed
+    (``... + flush``: the same with the flush timed, the whole cost of the drawing)."""
+    from vgxsim import GL, gl
+    from vgxsim.gl._core import current
+
+    gl.prefsize(64, 64)
+    gid = gl.winopen("other calls")
+    gl.RGBmode()
+    gl.gconfig()
+    gl.ortho2(-0.5, 63.5, -0.5, 63.5)
+    gl.lmdef(GL.DEFMATERIAL, 1, [GL.DIFFUSE, 0.8, 0.6, 0.4, GL.LMNULL])
+    gl.lmdef(GL.DEFLMODEL, 1, [GL.LMNULL])
+    gl.deflinestyle(1, 0x3C3C)
+    ctx = current("bench")
+    n = N_CALLS
+    out: dict[str, float] = {}
+    flush = ctx.flush
+
+    def move_draw():
+        for _ in range(n // 2):
+            gl.move2(1.0, 2.0)
+            gl.draw2(30.0, 40.0)
+
+    def draw_only():
+        for _ in range(n):
+            gl.draw2(30.0, 40.0)
+
+    def move_draw_flushed():
+        move_draw()
+        flush()
+
+    def pnt2():
+        for _ in range(n):
+            gl.pnt2(5.0, 6.0)
+
+    def rectf():
+        for _ in range(n):
+            gl.rectf(2.0, 2.0, 9.0, 7.0)
+
+    def cmov2():
+        for _ in range(n):
+            gl.cmov2(3.0, 4.0)
+
+    def drawing_rows():
+        out["move2+draw2 (per call)"] = _median_ns(move_draw, n, rounds, after=flush)
+        out["move2+draw2 + flush (per call)"] = _median_ns(move_draw_flushed, n, rounds)
+        out["draw2"] = _median_ns(draw_only, n, rounds,
+                                  before=lambda: gl.move2(1.0, 1.0), after=flush)
+        out["pnt2"] = _median_ns(pnt2, n, rounds, after=flush)
+        out["rectf"] = _median_ns(rectf, n, rounds, after=flush)
+
+    out["cmov2"] = _median_ns(cmov2, n, rounds)
+
+    def matrix_row(call):
+        def loop():
+            for _ in range(n):
+                gl.pushmatrix()
+                call()
+                gl.popmatrix()
+        return loop
+
+    def push_pop():
+        for _ in range(n):
+            gl.pushmatrix()
+            gl.popmatrix()
+
+    m16 = [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 2.0, 3.0, 1.0]
+    floor = _median_ns(push_pop, n, rounds)
+    for name, call in (("rot", lambda: gl.rot(30.0, "z")),
+                       ("rotate", lambda: gl.rotate(300, "x")),
+                       ("scale", lambda: gl.scale(2.0, 3.0, 4.0)),
+                       ("multmatrix", lambda: gl.multmatrix(m16)),
+                       ("loadmatrix", lambda: gl.loadmatrix(m16))):
+        # (push + call + pop, less push + pop: the call alone)
+        out[f"{name} (push/pop subtracted)"] = _median_ns(matrix_row(call), n, rounds) - floor
+
+    def getmatrix():
+        for _ in range(n):
+            gl.getmatrix()
+
+    out["getmatrix"] = _median_ns(getmatrix, n, rounds)
+
+    def toggles(call, a, b):
+        def loop():
+            for i in range(n):
+                call(a if i & 1 else b)
+        return loop
+
+    def afunction():
+        for i in range(n):
+            gl.afunction(i & 1, GL.AF_GREATER)
+
+    def lsetdepth():
+        for i in range(n):
+            gl.lsetdepth(0, 0x7FFFFF - (i & 1))
+
+    out["afunction"] = _median_ns(afunction, n, rounds)
+    out["lsetdepth"] = _median_ns(lsetdepth, n, rounds)
+    out["lmcolor"] = _median_ns(toggles(gl.lmcolor, GL.LMC_COLOR, GL.LMC_DIFFUSE), n, rounds)
+    out["mmode(MVIEWING)"] = _median_ns(toggles(gl.mmode, GL.MVIEWING, GL.MVIEWING), n,
+                                        rounds)
+    out["frontbuffer"] = _median_ns(toggles(gl.frontbuffer, 1, 0), n, rounds)
+    out["setlinestyle"] = _median_ns(toggles(gl.setlinestyle, 1, 0), n, rounds)
+    gl.lmcolor(GL.LMC_COLOR)
+    # Last: the drawing rows allocate most (the flushes), which would weigh on the
+    # rows measured after them.
+    drawing_rows()
     gl.winclose(gid)
     return out
 
@@ -714,6 +832,7 @@ def main(argv=None) -> int:
     if args.cpu:
         CLOCK["ns"] = time.process_time_ns
     calls = vgxsim_calls(rounds)
+    calls.update(other_calls(rounds))
     floors = python_floors(rounds)
     mesa = None if args.no_mesa else mesa_calls(rounds)
     print(f"{'call':48s} {'vgxsim':>7s} {'PyOpenGL':>8s} {'ratio':>5s} {'5x':>5s} "

@@ -1,6 +1,7 @@
 """Fast paths of the common calls (issue 6 per-call cost) against their general paths.
 
-translate() defers its product (state/matrices.py DEFER_TRANSLATE) and pushmatrix
+translate() defers its product (state/matrices.py DEFER_TRANSLATE; rot, rotate,
+scale, multmatrix and loadmatrix join it, DEFER_PRODUCTS) and pushmatrix
 shares the top matrix; cpack, c3f, lmbind, stencil and translate take inlined checks
 for plain ints/floats.  Each must leave exactly the state and planes the general path
 leaves: the deferral is switched off, the inlined checks are bypassed by passing the
@@ -49,8 +50,19 @@ def _scene(seed: int) -> dict[str, np.ndarray]:
             depth -= 1
         elif r < 0.5:
             gl.translate(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1))
-        elif r < 0.55:
+        elif r < 0.53:
             gl.rot(rng.uniform(-90, 90), rng.choice("xyz"))
+        elif r < 0.55:
+            gl.rotate(rng.randrange(-900, 900), rng.choice("xyzX"))
+        elif r < 0.57:
+            m = [1.0 + rng.uniform(-0.2, 0.2) if i in (0, 5, 10) else
+                 rng.uniform(-0.2, 0.2) if i not in (3, 7, 11, 15) else 0.0
+                 for i in range(16)]
+            m[15] = 1.0
+            gl.multmatrix(m if rng.random() < 0.5 else tuple(m))
+        elif r < 0.58:
+            gl.loadmatrix([1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+                           rng.uniform(-1, 1), rng.uniform(-1, 1), -6.0, 1.0])
         elif r < 0.6:
             gl.scale(rng.uniform(0.5, 1.5), rng.uniform(0.5, 1.5), 1.0)
         elif r < 0.63:
@@ -74,11 +86,14 @@ def _scene(seed: int) -> dict[str, np.ndarray]:
     return out
 
 
+@pytest.mark.parametrize("switches", [("DEFER_TRANSLATE",), ("DEFER_PRODUCTS",),
+                                      ("DEFER_TRANSLATE", "DEFER_PRODUCTS")])
 @pytest.mark.parametrize("seed", range(4))
-def test_deferred_translate_gives_the_same_planes(gl_window, monkeypatch, seed):
+def test_deferred_translate_gives_the_same_planes(gl_window, monkeypatch, seed, switches):
     gl_window(W, H, rgb=True)
     fast = _scene(seed)
-    monkeypatch.setattr(matrices, "DEFER_TRANSLATE", False)
+    for switch in switches:
+        monkeypatch.setattr(matrices, switch, False)
     gl_window(W, H, rgb=True)
     slow = _scene(seed)
     assert np.any(fast["color"] != 0)  # the scene draws something

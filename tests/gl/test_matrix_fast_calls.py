@@ -193,3 +193,42 @@ def test_loadmatrix_after_a_deferred_translate_replaces_it(fast, monkeypatch):
         session.reset()
         monkeypatch.setattr(_core, "FAST_CALLS", True)
         session.refresh()
+
+
+@pytest.mark.parametrize("fast", [True, False])
+def test_deferred_products_before_and_after_a_load_in_order(fast, monkeypatch):
+    """rot, scale and translate noted before a loadmatrix are replaced by it; those
+    after it, and a multmatrix, multiply it in call order (each premultiplies:
+    hand-computed with the same numpy products)."""
+    from vgxsim.geometry.transform import rotation, scaling
+
+    monkeypatch.setattr(_core, "FAST_CALLS", fast)
+    session.reset()
+    try:
+        gl.prefsize(8, 8)
+        gl.winopen("order")
+        gl.mmode(GL.MVIEWING)
+        gl.rot(30.0, "x")
+        gl.scale(2.0, 1.0, 1.0)
+        gl.translate(1.0, 2.0, 3.0)
+        m = [1.0, 0.5, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.0, 5.0, 6.0, 7.0, 1.0]
+        gl.loadmatrix(m)
+        gl.rotate(450, "z")
+        gl.scale(1.0, 3.0, 0.5)
+        n = [1.0, 0.0, 0.0, 0.0, 0.25, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0]
+        gl.multmatrix(tuple(n))
+        want = np.asarray(m, np.float64).reshape(4, 4)
+        for step in (rotation(45.0, "z"), scaling(1.0, 3.0, 0.5),
+                     np.asarray(n, np.float64).reshape(4, 4)):
+            want = step @ want
+        np.testing.assert_allclose(np.asarray(gl.getmatrix()).reshape(4, 4), want,
+                                   rtol=0, atol=1e-12)
+        gl.pushmatrix()
+        gl.loadmatrix(n)
+        gl.popmatrix()  # the load (deferred) goes with its matrix
+        np.testing.assert_allclose(np.asarray(gl.getmatrix()).reshape(4, 4), want,
+                                   rtol=0, atol=1e-12)
+    finally:
+        session.reset()
+        monkeypatch.setattr(_core, "FAST_CALLS", True)
+        session.refresh()

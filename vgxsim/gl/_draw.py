@@ -211,6 +211,8 @@ def begin(ctx, name: str, args: tuple, prim: str) -> None:
         raise GLUsageError(f"{describe(name, args)}: {OPENER[ctx.prim]}() is still open "
                            f"(call {CLOSER[ctx.prim]}() first)")
     st = ctx.stream
+    if ctx.ls_restart and prim in ("line", "closedline"):
+        ctx.restart_pattern()  # a move under resetls(TRUE) came before this line
     if len(st.ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
         drain(ctx)
     _restate(ctx, st)
@@ -246,9 +248,9 @@ def end(ctx, name: str, args: tuple, prim: str) -> None:
         state = "no primitive is open" if ctx.prim is None else f"{OPENER[ctx.prim]}() is open"
         raise GLUsageError(f"{describe(name, args)}: without {OPENER[prim]}() ({state})")
     ctx.prim = None
+    # (No drain for lines: a draw after this line continues its pattern from
+    # Context.linestyle_pos when the stream is decoded, its DRAW_SEG row.)
     ctx.stream.ops.append(END)
-    if prim in ("line", "closedline"):
-        drain(ctx)  # the line-style position after the line is needed by move/draw
 
 
 def swap(ctx, name: str, args: tuple) -> None:
@@ -315,6 +317,7 @@ def stream_call(name: str, parse: Callable[[tuple], list], doc: str):
 def _bgn(prim: str):
     name = OPENER[prim]
     code = KIND_OF[prim]
+    lines = prim in ("line", "closedline")  # (a pending move's restart: general path)
 
     def parse(args: tuple) -> list:
         _no_args(name, args)
@@ -327,7 +330,7 @@ def _bgn(prim: str):
 
     def call(*args, **kwargs):
         ctx = session.imm
-        if ctx is None or kwargs or ctx.prim is not None:
+        if ctx is None or kwargs or ctx.prim is not None or (lines and ctx.ls_restart):
             return general(*args, **kwargs)
         st = ctx.stream
         ops = st.ops
@@ -354,7 +357,6 @@ def _bgn(prim: str):
 
 def _end(prim: str):
     name = CLOSER[prim]
-    drains = prim in ("line", "closedline")
 
     def parse(args: tuple) -> list:
         _no_args(name, args)
@@ -368,7 +370,7 @@ def _end(prim: str):
     def call(*args, **kwargs):
         ctx = session.imm
         # (ctx.prim holds the very string begin stored: identity is equality here.)
-        if ctx is None or kwargs or ctx.prim is not prim or drains:
+        if ctx is None or kwargs or ctx.prim is not prim:
             return general(*args, **kwargs)
         ctx.prim = None
         ctx.stream.ops.append(END)

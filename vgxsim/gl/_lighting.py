@@ -225,15 +225,33 @@ _BOUND_KEY = {int(GL.MATERIAL): "material", int(GL.BACKMATERIAL): "backmaterial"
               int(GL.LMODEL): "lmodel"}
 
 
-@gl_function()
-def lmcolor(mode: int) -> None:
-    """What RGB colour commands do while lighting is on (lmcolor(3G)).
+def _general_lmcolor(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None or len(args) != 1:
+        return record_or_refuse(lmcolor, args, kwargs)
+    _lmcolor(*args)
+
+
+@gl_function(binds=(1, 1, ("int",)))
+def lmcolor(mode=_NO, /, *more, **kw) -> None:
+    """lmcolor(mode): what RGB colour commands do while lighting is on (lmcolor(3G)).
 
     LMC_COLOR (default) sets the current colour; LMC_EMISSION, LMC_AMBIENT,
     LMC_DIFFUSE, LMC_SPECULAR and LMC_AD set that property of the bound material
     (DIFFUSE and AD take alpha as ALPHA) from the next colour command on; LMC_NULL
     ignores colour commands.
     """
+    # Valid path (FAST_CALLS): an int or GL token LMC_COLOR..LMC_AD (0..6), stored
+    # as the general path does; anything else takes the general path.
+    ctx = session.imm
+    if (ctx is None or kw or more or (type(mode) is not int and type(mode) is not Token)
+            or not 0 <= mode <= 6):
+        return _general_lmcolor(*given((mode,), more), **kw)
+    ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)
+    ctx.lmcolor_mode = int(mode)
+    ctx.lmcolor_set = False
+
+
+def _lmcolor(mode: int) -> None:
     args = (mode,)
     ctx = current("lmcolor", args)
     ctx.lighting_serial += 1  # the stream records the draw state anew (gl/_draw.py)

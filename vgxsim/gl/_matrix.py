@@ -21,6 +21,7 @@ import numpy as np
 from vgxsim import GL
 from vgxsim.geometry import transform as T
 from vgxsim.state.matrices import STACK_DEPTH, MatrixModeError, MatrixStackError
+from vgxsim.tokens import Token
 
 from ._core import (
     _NO,
@@ -104,8 +105,28 @@ def load_window_projection(ctx) -> None:
     ctx.matrices.reset(T.orthographic(-0.5, w - 0.5, -0.5, h - 0.5, -1.0, 1.0))
 
 
-@gl_function(record=True)
-def mmode(*args) -> None:
+def _general_mmode(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None:
+        return record_or_refuse(mmode, args, kwargs)
+    _mmode(*args)
+
+
+@gl_function(record=True, binds=(0, math.inf, ()))
+def mmode(m=_NO, /, *more, **kw) -> None:
+    """mmode(m): select MSINGLE, MPROJECTION, MVIEWING or MTEXTURE (mmode(3G)).
+
+    Entering or leaving MSINGLE empties the matrix stacks and makes every matrix the
+    identity (mmode(3G)); switching among the other three keeps every matrix."""
+    # Valid path (FAST_CALLS): an int or GL token MSINGLE..MTEXTURE (0..3); anything
+    # else takes the general path, which validates and raises as before.
+    ctx = session.imm
+    if (ctx is None or kw or more or (type(m) is not int and type(m) is not Token)
+            or not 0 <= m <= 3):
+        return _general_mmode(*given((m,), more), **kw)
+    ctx.matrices.set_mode(int(m))
+
+
+def _mmode(*args) -> None:
     """mmode(m): select MSINGLE, MPROJECTION, MVIEWING or MTEXTURE (mmode(3G)).
 
     Entering or leaving MSINGLE empties the matrix stacks and makes every matrix the
@@ -247,7 +268,7 @@ def rotate(a=_NO, axis=_NO, /, *more, **kw) -> None:
     ax = _AXES.get(axis)
     if ax is None:
         return _general_rotate(a, axis)
-    ctx.matrices.rotate_axis(a / 10.0, ax)
+    ctx.matrices.rotate(a / 10.0, ax)  # (deferred: DEFER_PRODUCTS)
 
 
 def _general_rot(*args, **kwargs) -> None:
@@ -273,7 +294,7 @@ def rot(a=_NO, axis=_NO, /, *more, **kw) -> None:
     ax = _AXES.get(axis)
     if ax is None:
         return _general_rot(a, axis)
-    ctx.matrices.rotate_axis(a, ax)
+    ctx.matrices.rotate(a, ax)  # (deferred: DEFER_PRODUCTS)
 
 
 def _general_translate(*args, **kwargs) -> None:
@@ -313,7 +334,7 @@ def scale(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
     if (ctx is None or kw or more or type(x) is not float or type(y) is not float
             or type(z) is not float or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
         return _general_scale(*given((x, y, z), more), **kw)
-    ctx.matrices.scale_by(x, y, z)
+    ctx.matrices.scale(x, y, z)  # (deferred: DEFER_PRODUCTS)
 
 
 def _general_pushmatrix(*args, **kwargs) -> None:
@@ -398,7 +419,7 @@ _F64 = np.dtype(np.float64)
 
 
 def _plain_matrix(m) -> np.ndarray | None:
-    """The (4, 4) float64 array of a Matrix given as one list or tuple of 16 plain
+    """The float64 array of 16 of a Matrix given as one list or tuple of 16 plain
     numbers, all finite, else None (the general path decides).  np.array makes a
     float64 vector of such a list only when every element is a float, int or bool
     -- what flat_numbers takes -- and float(v) is its value of each; a string, None,
@@ -413,7 +434,7 @@ def _plain_matrix(m) -> np.ndarray | None:
     t = sum(m)
     if t - t != 0.0:
         return None
-    return a.reshape(4, 4)
+    return a  # (flat: MatrixState reshapes it where the product is formed)
 
 
 def _general_loadmatrix(*args, **kwargs) -> None:
@@ -432,7 +453,7 @@ def loadmatrix(m=_NO, /, *more, **kw) -> None:
     a = None if (ctx is None or kw or more) else _plain_matrix(m)
     if a is None:
         return _general_loadmatrix(*given((m,), more), **kw)
-    ctx.matrices.load_owned(a)
+    ctx.matrices.load_deferred(a)  # (DEFER_PRODUCTS)
 
 
 def _general_multmatrix(*args, **kwargs) -> None:
@@ -450,15 +471,15 @@ def multmatrix(m=_NO, /, *more, **kw) -> None:
     a = None if (ctx is None or kw or more) else _plain_matrix(m)
     if a is None:
         return _general_multmatrix(*given((m,), more), **kw)
-    ctx.matrices.mult_by(a)
+    ctx.matrices.mult_deferred(a)  # (DEFER_PRODUCTS)
 
 
 @gl_function(record=False)
 def getmatrix(*args) -> list[float]:
     """getmatrix() -> list of 16 floats, row-major (``m[i][j]`` at ``4*i + j``), the
     form the historical binding returned; it round-trips with loadmatrix."""
-    m = current("getmatrix", args).matrices.get()
-    return [float(x) for x in m.reshape(-1)]
+    # (tolist of a float64 matrix: a new list of the same Python floats as float(x))
+    return current("getmatrix", args).matrices.current().ravel().tolist()
 
 
 # -- the viewport stack and screen-to-world mapping (issue 10) ------------------------------

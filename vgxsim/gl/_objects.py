@@ -819,6 +819,8 @@ def _prologue(ctx, ch: Chunk) -> tuple:
     (plan, colour op)."""
     if ch.needs is not None:
         _check_needs(ctx, ch)
+    if ch.has_lines and ctx.ls_restart:
+        ctx.restart_pattern()  # a move under resetls(TRUE) came before its lines
     colour_op = C_OP
     if ch.last_colour is not None:
         if not ctx.config.rgb:
@@ -886,8 +888,6 @@ def _append(ctx, ch: Chunk, plan: SplicePlan, colour_op: int) -> None:
             st.has_texcoords = True
         if ch.gpos is not None:
             ctx.gpos = ch.gpos
-        if ch.has_lines:
-            drain(ctx)
 
 
 # -- prepared replays ----------------------------------------------------------------------

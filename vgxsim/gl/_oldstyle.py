@@ -44,8 +44,14 @@ import math
 import numpy as np
 
 from vgxsim.geometry.transform import apply
+from vgxsim.pipeline.decode import drain
+from vgxsim.stream.opcodes import BGN, DRAW_RESTART, DRAW_SEG, END, KIND_OF, V
+from vgxsim.stream.recorder import MAX_STREAM_OPS
 
 from ._core import (
+    _NO,
+    INT_MAX,
+    INT_MIN,
     GLTypeError,
     GLUsageError,
     GLValueError,
@@ -55,9 +61,12 @@ from ._core import (
     current,
     describe,
     flat_numbers,
+    given,
     gl_function,
+    record_or_refuse,
+    session,
 )
-from ._draw import apply_ops, coords, lit_mask, stream_call
+from ._draw import _restate_changed, apply_ops, coords, lit_mask, stream_call, sync
 
 __all__ = [
     "rect", "recti", "rects", "rectf", "rectfi", "rectfs",
@@ -111,13 +120,70 @@ def _rect_parse(name: str, filled: bool, integer: bool):
     return parse
 
 
+def _record_closed(ctx, kind_ops: tuple, xyzw: tuple) -> None:
+    """Record one closed primitive outside bgn*/end* -- begin(), the vertices and
+    end() of its stream operations, inlined: a STATE op if the draw state changed, a
+    SYNC if the colour, normal or lit flag did, then ``kind_ops`` (BGN, kind, one V
+    per vertex, END) and the vertices' floats."""
+    st = ctx.stream
+    ops = st.ops
+    if len(ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
+        drain(ctx)
+    snap = ctx.raster._snapshot  # _draw.same_state, inlined (one call less)
+    if not (snap is not None and snap is st.raster and ctx.matrices._mvp is st.mvp
+            and ctx.depth_range is st.depth and ctx.lighting_serial == st.lighting_serial
+            and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
+        _restate_changed(ctx, st)
+    if (ctx.colour is not st.colour or ctx.normal is not st.normal
+            or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)
+    ops.extend(kind_ops)
+    st.fl.extend(xyzw)
+
+
+_RECT_OPS = {True: (BGN, KIND_OF["polygon"], V, V, V, V, END),
+             False: (BGN, KIND_OF["closedline"], V, V, V, V, END)}
+
+
 def _make_rect(filled: bool, suffix: str):
     name = f"rect{'f' if filled else ''}{suffix}"
     what = "fills" if filled else "outlines"
-    return stream_call(name, _rect_parse(name, filled, _FORMS[suffix]),
-                       f"{name}(x1, y1, x2, y2): {what} the rectangle with corners "
-                       f"(x1, y1), (x2, y2) at z = 0 (rect(3G)); counter-clockwise when "
-                       f"x1 < x2 and y1 < y2.")
+    integer = _FORMS[suffix]
+    parse = _rect_parse(name, filled, integer)
+    general = stream_call(name, parse,
+                          f"{name}(x1, y1, x2, y2): {what} the rectangle with corners "
+                          f"(x1, y1), (x2, y2) at z = 0 (rect(3G)); counter-clockwise "
+                          f"when x1 < x2 and y1 < y2.")
+    kind_ops = _RECT_OPS[filled]
+
+    # Valid path (FAST_CALLS): four finite floats (rect, rectf) or four ints of 32
+    # bits (the i/s forms, as float(v)), outside bgn*/end* (and, for the outline, no
+    # move's pattern restart pending: begin() applies it); the corners in parse's
+    # order.  Anything else takes the stream call, which validates and raises.
+    def call(x1=_NO, y1=_NO, x2=_NO, y2=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if ctx is None or kw or more or ctx.prim is not None or (
+                not filled and ctx.ls_restart):
+            return general(*given((x1, y1, x2, y2), more), **kw)
+        if integer:
+            if not (type(x1) is int and type(y1) is int and type(x2) is int
+                    and type(y2) is int and INT_MIN <= x1 <= INT_MAX
+                    and INT_MIN <= y1 <= INT_MAX and INT_MIN <= x2 <= INT_MAX
+                    and INT_MIN <= y2 <= INT_MAX):
+                return general(*given((x1, y1, x2, y2), more))
+            x1, y1, x2, y2 = float(x1), float(y1), float(x2), float(y2)
+        elif not (type(x1) is float and type(y1) is float and type(x2) is float
+                  and type(y2) is float and x1 - x1 == 0.0 and y1 - y1 == 0.0
+                  and x2 - x2 == 0.0 and y2 - y2 == 0.0):  # (x - x: NaN, inf)
+            return general(*given((x1, y1, x2, y2), more))
+        _record_closed(ctx, kind_ops, (x1, y1, 0.0, 1.0, x2, y1, 0.0, 1.0,
+                                       x2, y2, 0.0, 1.0, x1, y2, 0.0, 1.0))
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = general.__doc__
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
+    call.stream = parse
+    return call
 
 
 rect, recti, rects = (_make_rect(False, s) for s in ("", "i", "s"))
@@ -157,15 +223,49 @@ poly, polyi, polys = (_make_poly(False, 3, s) for s in ("", "i", "s"))
 poly2, poly2i, poly2s = (_make_poly(False, 2, s) for s in ("", "i", "s"))
 
 
+_PNT_OPS = (BGN, KIND_OF["point"], V, END)
+
+
 def _make_pnt(dim: int, suffix: str):
     name = _family("pnt", dim == 2, suffix)
+    integer = _FORMS[suffix]
 
     def parse(args: tuple) -> list:
-        p = _point(coords(name, args, dim, _FORMS[suffix]))
+        p = _point(coords(name, args, dim, integer))
         return [("bgn", "point"), ("v", p), ("end", "point"), ("g", p)]
 
-    return stream_call(name, parse, f"{name}(...): draw a point (pnt(3G)) and make it "
-                                    f"the current graphics position.")
+    general = stream_call(name, parse, f"{name}(...): draw a point (pnt(3G)) and make "
+                                       f"it the current graphics position.")
+
+    # Valid path (FAST_CALLS): dim finite floats (pnt, pnt2) or ints of 32 bits (the
+    # i/s forms, as float(v)), outside bgn*/end*; anything else (one tuple too)
+    # takes the stream call, which validates and raises.
+    def call(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if ctx is None or kw or more or ctx.prim is not None or (
+                (z is _NO) != (dim == 2)):
+            return general(*given((x, y, z), more), **kw)
+        if dim == 2:
+            z = 0.0
+        if integer:
+            if not (type(x) is int and type(y) is int and (dim == 2 or type(z) is int)
+                    and INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX
+                    and (dim == 2 or INT_MIN <= z <= INT_MAX)):
+                return general(*given((x, y, z) if dim == 3 else (x, y), more))
+            p = (float(x), float(y), float(z), 1.0)
+        elif (type(x) is float and type(y) is float and type(z) is float
+                and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
+            p = (x, y, z, 1.0)
+        else:
+            return general(*given((x, y, z) if dim == 3 else (x, y), more))
+        _record_closed(ctx, _PNT_OPS, p)
+        ctx.gpos = p
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = general.__doc__
+    call = gl_function(record=True, binds=(0, math.inf, ()))(call)
+    call.stream = parse
+    return call
 
 
 pnt, pnti, pnts = (_make_pnt(3, s) for s in ("", "i", "s"))
@@ -240,19 +340,46 @@ rpdr2, rpdr2i, rpdr2s = (_make_rpoly(2, s, False) for s in ("", "i", "s"))
 
 
 # -- move / draw -----------------------------------------------------------------------
+# A draw is recorded in the command stream as one two-vertex segment (BGN DRAW_SEG, the
+# current graphics position and the new point, END), drawn at the flush with the
+# line-style pattern continued from where the last line drawn before it left it;
+# a move under resetls(TRUE) makes the next one a DRAW_RESTART (pattern at 0).  So
+# the pattern runs exactly as when each draw was drawn at its call, which drained
+# the stream and rasterized the segment there (~90 us a call).
+_SEG_OPS = (BGN, DRAW_SEG, V, V, END)
+_RESTART_OPS = (BGN, DRAW_RESTART, V, V, END)
+
+
 def _move_to(ctx, p) -> None:
     ctx.gpos = p
     if ctx.resetls:
-        ctx.linestyle_pos = 0  # a move starts a new polyline: the pattern restarts
+        ctx.ls_restart = True  # a move starts a new polyline: the pattern restarts
 
 
 def _draw_to(ctx, p) -> None:
-    """One segment from the current graphics position, continuing the pattern."""
-    obj = np.array([ctx.gpos, p], dtype=np.float64)
-    cols = np.array([ctx.colour, ctx.colour], dtype=np.float64)
-    nrms = np.array([ctx.normal, ctx.normal], dtype=np.float64)
-    lit = lit_mask(ctx, np.full(2, ctx.last_sent == "normal"))
-    ctx.draw_arrays("line", obj, cols, nrms, lit, pattern_offset=ctx.linestyle_pos)
+    """One segment from the current graphics position, continuing the pattern, in
+    the current colour at both ends (and normal, lit as the last colour/normal call
+    says), transformed by the matrix current now."""
+    st = ctx.stream
+    ops = st.ops
+    if len(ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
+        drain(ctx)
+    snap = ctx.raster._snapshot  # _draw.same_state, inlined (one call less)
+    if not (snap is not None and snap is st.raster and ctx.matrices._mvp is st.mvp
+            and ctx.depth_range is st.depth and ctx.lighting_serial == st.lighting_serial
+            and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
+        _restate_changed(ctx, st)
+    if (ctx.colour is not st.colour or ctx.normal is not st.normal
+            or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+        sync(ctx, st)
+    if ctx.ls_restart:
+        ops.extend(_RESTART_OPS)
+        ctx.ls_restart = False
+    else:
+        ops.extend(_SEG_OPS)
+    fl = st.fl
+    fl.extend(ctx.gpos)
+    fl.extend(p)
     ctx.gpos = p
 
 
@@ -262,8 +389,7 @@ def _make_move(base: str, dim: int, suffix: str):
     relative = base.startswith("r")
     drawing = base.endswith("dr") or base.endswith("draw")
 
-    @gl_function(record=True)
-    def call(*args) -> None:
+    def body(*args) -> None:
         ctx = current(name, args)
         _not_in_primitive(ctx, name, args)
         vals = coords(name, args, dim, integer)
@@ -273,6 +399,102 @@ def _make_move(base: str, dim: int, suffix: str):
         else:
             _move_to(ctx, p)
 
+    def general(*args, **kwargs) -> None:
+        if kwargs or session.recording is not None:
+            return record_or_refuse(call, args, kwargs)
+        body(*args)
+
+    # Valid paths (FAST_CALLS): two or three finite floats (the float forms) or ints
+    # of 32 bits (the i/s forms, as float(v), coords' value), outside bgn*/end*;
+    # anything else -- one tuple, a keyword, a wrong count or type, recording --
+    # takes the general path, which validates and raises as it always did.
+    def call2(x=_NO, y=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not float or type(y) is not float
+                or x - x != 0.0 or y - y != 0.0):  # (x - x: NaN for NaN and inf)
+            return general(*given((x, y), more), **kw)
+        if drawing:
+            _draw_to(ctx, (x, y, 0.0, 1.0))
+        else:
+            ctx.gpos = (x, y, 0.0, 1.0)
+            if ctx.resetls:
+                ctx.ls_restart = True
+
+    def draw2f(x=_NO, y=_NO, /, *more, **kw) -> None:
+        # draw2/move2's call2 for draw2, with _draw_to inlined (one call less).
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not float or type(y) is not float
+                or x - x != 0.0 or y - y != 0.0):
+            return general(*given((x, y), more), **kw)
+        st = ctx.stream
+        ops = st.ops
+        if len(ops) > MAX_STREAM_OPS:
+            return _draw_to(ctx, (x, y, 0.0, 1.0))
+        snap = ctx.raster._snapshot
+        if not (snap is st.raster and snap is not None and ctx.matrices._mvp is st.mvp
+                and ctx.depth_range is st.depth and ctx.lighting_serial == st.lighting_serial
+                and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
+            _restate_changed(ctx, st)
+        if (ctx.colour is not st.colour or ctx.normal is not st.normal
+                or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
+            sync(ctx, st)
+        if ctx.ls_restart:
+            ops.extend(_RESTART_OPS)
+            ctx.ls_restart = False
+        else:
+            ops.extend(_SEG_OPS)
+        fl = st.fl
+        fl.extend(ctx.gpos)
+        ctx.gpos = p = (x, y, 0.0, 1.0)
+        fl.extend(p)
+
+    def call3(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not float or type(y) is not float or type(z) is not float
+                or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
+            return general(*given((x, y, z), more), **kw)
+        if drawing:
+            _draw_to(ctx, (x, y, z, 1.0))
+        else:
+            ctx.gpos = (x, y, z, 1.0)
+            if ctx.resetls:
+                ctx.ls_restart = True
+
+    def call2i(x=_NO, y=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not int or type(y) is not int
+                or not (INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX)):
+            return general(*given((x, y), more), **kw)
+        if drawing:
+            _draw_to(ctx, (float(x), float(y), 0.0, 1.0))
+        else:
+            ctx.gpos = (float(x), float(y), 0.0, 1.0)
+            if ctx.resetls:
+                ctx.ls_restart = True
+
+    def call3i(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if (ctx is None or kw or more or ctx.prim is not None
+                or type(x) is not int or type(y) is not int or type(z) is not int
+                or not (INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX
+                        and INT_MIN <= z <= INT_MAX)):
+            return general(*given((x, y, z), more), **kw)
+        if drawing:
+            _draw_to(ctx, (float(x), float(y), float(z), 1.0))
+        else:
+            ctx.gpos = (float(x), float(y), float(z), 1.0)
+            if ctx.resetls:
+                ctx.ls_restart = True
+
+    if relative:
+        call = general
+    else:
+        call = {(2, False): draw2f if drawing else call2, (3, False): call3,
+                (2, True): call2i, (3, True): call3i}[dim, integer]
     call.__name__ = call.__qualname__ = name
     if drawing:
         call.__doc__ = (f"{name}(...): draw a line from the current graphics position to "
@@ -282,7 +504,7 @@ def _make_move(base: str, dim: int, suffix: str):
         call.__doc__ = (f"{name}(...): move the current graphics position "
                         f"{'by' if relative else 'to'} this point; starts a new polyline "
                         f"(move(3G)).")
-    return call
+    return gl_function(record=True, binds=(0, math.inf, ()))(call)
 
 
 move, movei, moves = (_make_move("move", 3, s) for s in ("", "i", "s"))

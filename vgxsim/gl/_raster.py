@@ -181,14 +181,35 @@ def _depth_limits(ctx) -> tuple[int, int, str]:
     return ZMIN, ZMAX, "getgdesc(GD_ZMIN..GD_ZMAX)"
 
 
-@gl_function()
-def lsetdepth(near: int, far: int) -> None:
-    """Map the near and far clipping planes to these z values (lsetdepth(3G)).
+def _general_lsetdepth(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None or len(args) != 2:
+        return record_or_refuse(lsetdepth, args, kwargs)
+    _lsetdepth(*args)
+
+
+_ZRANGEMAP = int(GL.GLC_ZRANGEMAP)
+
+
+@gl_function(binds=(2, 2, ("int", "int")))
+def lsetdepth(near=_NO, far=_NO, /, *more, **kw) -> None:
+    """lsetdepth(near, far): map the near and far clipping planes to these z values
+    (lsetdepth(3G)).
 
     ``near > far`` is allowed (reversed depth, used with ZF_GREATER).  Under
     GLC_ZRANGEMAP 1 the range 0..0x7FFFFF is accepted and used as it is: those are
     valid hardware z values, so no remapping is needed for depth comparisons.
     """
+    # Valid path (FAST_CALLS): two plain ints inside _depth_limits' range (without
+    # GLC_ZRANGEMAP: GD_ZMIN..GD_ZMAX), stored as the general path stores them.
+    ctx = session.imm
+    if (ctx is None or kw or more or type(near) is not int or type(far) is not int
+            or not (ZMIN <= near <= ZMAX and ZMIN <= far <= ZMAX)
+            or ctx.compat.get(_ZRANGEMAP, 0)):
+        return _general_lsetdepth(*given((near, far), more), **kw)
+    ctx.depth_range = (near, far)
+
+
+def _lsetdepth(near: int, far: int) -> None:
     args = (near, far)
     ctx = current("lsetdepth", args)
     lo, hi, why = _depth_limits(ctx)
@@ -420,15 +441,40 @@ _DFACTORS = frozenset(range(0, 8))  # (BF_MIN_SA_MDA, 8, is a source factor only
 _BF_ONE, _BF_ZERO, _LO_SRC = int(GL.BF_ONE), int(GL.BF_ZERO), int(GL.LO_SRC)
 
 
-@gl_function()
-def afunction(ref: int, func: int) -> None:
-    """Alpha test: a fragment is kept iff ``alpha FUNC ref`` (afunction(3G)); ref is
-    0..255, func AF_NEVER..AF_ALWAYS (AF_ALWAYS, the default, disables the test)."""
+def _afunction(ref: int, func: int) -> None:
     args = (ref, func)
     ctx = current("afunction", args)
     r = _in_range("afunction", args, "ref", ref, 0, 255, "an 8-bit alpha")
     f = check_token("afunction", args, "func", func, _CMP, "AF_")
     ctx.raster.set(afunction=(r, f))
+
+
+def _general_afunction(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None or len(args) != 2:
+        return record_or_refuse(afunction, args, kwargs)
+    _afunction(*args)
+
+
+#: afunction's register value for each valid (ref, func), ``_AF_PAIRS[func][ref]``:
+#: the valid path stores one of these instead of a new tuple (a constant table).
+_AF_PAIRS = tuple(tuple((r, f) for r in range(256)) for f in _CMP)
+
+
+@gl_function(binds=(2, 2, ("int", "int")))
+def afunction(ref=_NO, func=_NO, /, *more, **kw) -> None:
+    """afunction(ref, func): alpha test, a fragment is kept iff ``alpha FUNC ref``
+    (afunction(3G)); ref is 0..255, func AF_NEVER..AF_ALWAYS (AF_ALWAYS, the
+    default, disables the test)."""
+    # Valid path (FAST_CALLS): two ints (or GL tokens) in range, stored as the
+    # general path's set() stores them; anything else takes the general path.
+    ctx = session.imm
+    if (ctx is None or kw or more or (type(ref) is not int and type(ref) is not Token)
+            or (type(func) is not int and type(func) is not Token)
+            or not (0 <= ref <= 255 and 0 <= func <= 7)):
+        return _general_afunction(*given((ref, func), more), **kw)
+    regs = ctx.raster
+    regs.afunction = _AF_PAIRS[func][ref]
+    regs._snapshot = None
 
 
 @gl_function()
@@ -526,9 +572,31 @@ def deflinestyle(n: int, ls: int) -> None:
         ctx.raster.set(linestyle=pattern)
 
 
-@gl_function()
-def setlinestyle(n: int) -> None:
-    """Make line style ``n`` current (setlinestyle(3G)); it must have been defined."""
+def _general_setlinestyle(*args, **kwargs) -> None:
+    if kwargs or session.recording is not None or len(args) != 1:
+        return record_or_refuse(setlinestyle, args, kwargs)
+    _setlinestyle(*args)
+
+
+@gl_function(binds=(1, 1, ("int",)))
+def setlinestyle(n=_NO, /, *more, **kw) -> None:
+    """setlinestyle(n): make line style ``n`` current (setlinestyle(3G)); it must
+    have been defined."""
+    # Valid path (FAST_CALLS): a plain int naming a defined style (no int outside
+    # 0..0x7FFF is a key of Context.linestyles), stored as the general path does.
+    ctx = session.imm
+    if ctx is None or kw or more or type(n) is not int:
+        return _general_setlinestyle(*given((n,), more), **kw)
+    pattern = ctx.linestyles.get(n)
+    if pattern is None:
+        return _general_setlinestyle(n)  # raises: not defined
+    ctx.linestyle_index = n
+    regs = ctx.raster
+    regs.linestyle = pattern
+    regs._snapshot = None
+
+
+def _setlinestyle(n: int) -> None:
     args = (n,)
     ctx = current("setlinestyle", args)
     idx = as_int("setlinestyle", args, "n", n)

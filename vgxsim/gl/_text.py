@@ -34,15 +34,19 @@ import math
 
 import numpy as np
 
-from vgxsim.geometry.transform import apply
-
 from ._core import (
+    _NO,
+    INT_MAX,
+    INT_MIN,
     GLTypeError,
     GLValueError,
     as_int,
     current,
     describe,
+    given,
     gl_function,
+    record_or_refuse,
+    session,
 )
 from ._draw import coords
 from ._fm import raster_font
@@ -73,42 +77,105 @@ def character_position(ctx, xyzw) -> tuple[bool, int, int, int]:
         character position is undefined), the snapped pixel x and y, and the depth
         as a z-buffer value (lsetdepth range).
     """
-    view = ctx.viewing()
-    clip = apply(np.asarray([xyzw], dtype=np.float64), view.mvp)[0]
-    x, y, z, w = (float(c) for c in clip)
-    inside = w > 0 and all(-w <= c <= w for c in (x, y, z))
-    if not inside:
+    x0, y0, z0, w0 = (float(c) for c in xyzw)
+    return _position(ctx, x0, y0, z0, w0)
+
+
+def _position(ctx, x0: float, y0: float, z0: float, w0: float) -> tuple:
+    """:func:`character_position` of four floats.  The point times the mvp is
+    spelled out in the order of :func:`vgxsim.geometry.transform.apply`
+    (``((x*m0 + y*m1) + z*m2) + w*m3`` per column, IEEE doubles, no fused
+    multiply-add: the same bits), on the mvp's entries as Python floats
+    (MatrixState.mvp_flat), without a numpy array per call."""
+    m = ctx.matrices.mvp_flat()
+    x = ((x0 * m[0] + y0 * m[4]) + z0 * m[8]) + w0 * m[12]
+    y = ((x0 * m[1] + y0 * m[5]) + z0 * m[9]) + w0 * m[13]
+    z = ((x0 * m[2] + y0 * m[6]) + z0 * m[10]) + w0 * m[14]
+    w = ((x0 * m[3] + y0 * m[7]) + z0 * m[11]) + w0 * m[15]
+    if not (w > 0 and -w <= x <= w and -w <= y <= w and -w <= z <= w):
         return False, 0, 0, 0
-    l, r, b, t = view.viewport
+    l, r, b, t = ctx.raster.viewport
     xw = (l - 0.5) + (x / w + 1.0) * (r - l + 1) / 2.0
     yw = (b - 0.5) + (y / w + 1.0) * (t - b + 1) / 2.0
-    near, far = view.depth
+    near, far = ctx.depth_range
     zw = near + (z / w + 1.0) * (far - near) / 2.0
     lo, hi = min(near, far), max(near, far)
     zi = min(max(math.floor(zw + 0.5), math.floor(lo + 0.5)), math.floor(hi + 0.5))
     return True, math.floor(xw + 0.5), math.floor(yw + 0.5), int(zi)
 
 
+_floor = math.floor  # (a constant: one global look-up in cmov's valid path)
+
+
+def _set_cpos(ctx, x: float, y: float, z: float) -> None:
+    valid, px, py, pz = _position(ctx, x, y, z, 1.0)
+    ctx.cpos_valid = valid
+    if valid:
+        ctx.cpos = (px, py)
+        ctx.cpos_z = pz
+
+
 def _make_cmov(dim: int, suffix: str):
     name = f"cmov{'2' if dim == 2 else ''}{suffix}"
     integer = suffix in ("i", "s")
 
-    @gl_function(record=True)
-    def call(*args) -> None:
+    def body(*args) -> None:
         vals = coords(name, args, dim, integer)
         ctx = current(name, args)
-        p = (vals[0], vals[1], vals[2] if dim == 3 else 0.0, 1.0)
-        valid, x, y, z = character_position(ctx, p)
-        ctx.cpos_valid = valid
-        if valid:
-            ctx.cpos = (x, y)
-            ctx.cpos_z = z
+        _set_cpos(ctx, vals[0], vals[1], vals[2] if dim == 3 else 0.0)
+
+    def general(*args, **kwargs) -> None:
+        if kwargs or session.recording is not None:
+            return record_or_refuse(call, args, kwargs)
+        body(*args)
+
+    # Valid path (FAST_CALLS): dim finite floats (cmov, cmov2) or ints of 32 bits
+    # (the i/s forms, as float(v)); anything else (one tuple too) takes the general
+    # path, which validates and raises as before.
+    def call(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
+        ctx = session.imm
+        if ctx is None or kw or more or (z is _NO) != (dim == 2):
+            return general(*given((x, y, z), more), **kw)
+        if dim == 2:
+            z = 0.0
+        if integer:
+            if not (type(x) is int and type(y) is int and (dim == 2 or type(z) is int)
+                    and INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX
+                    and (dim == 2 or INT_MIN <= z <= INT_MAX)):
+                return general(*given((x, y, z) if dim == 3 else (x, y), more))
+            x, y, z = float(x), float(y), float(z)
+        elif not (type(x) is float and type(y) is float and type(z) is float
+                  and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
+            return general(*given((x, y, z) if dim == 3 else (x, y), more))
+        # _position(ctx, x, y, z, 1.0), inlined (w = 1.0: w * m is m).
+        mats = ctx.matrices
+        memo = mats._flat
+        mvp = mats._mvp
+        m = memo[1] if memo is not None and mvp is not None and memo[0] is mvp else (
+            mats.mvp_flat())
+        cx = ((x * m[0] + y * m[4]) + z * m[8]) + m[12]
+        cy = ((x * m[1] + y * m[5]) + z * m[9]) + m[13]
+        cz = ((x * m[2] + y * m[6]) + z * m[10]) + m[14]
+        cw = ((x * m[3] + y * m[7]) + z * m[11]) + m[15]
+        if not (cw > 0 and -cw <= cx <= cw and -cw <= cy <= cw and -cw <= cz <= cw):
+            ctx.cpos_valid = False
+            return
+        l, r, b, t = ctx.raster.viewport
+        near, far = ctx.depth_range
+        floor = _floor
+        zi = floor(near + (cz / cw + 1.0) * (far - near) / 2.0 + 0.5)
+        lo, hi = (floor(near + 0.5), floor(far + 0.5)) if near <= far else (
+            floor(far + 0.5), floor(near + 0.5))
+        ctx.cpos_valid = True
+        ctx.cpos = (floor((l - 0.5) + (cx / cw + 1.0) * (r - l + 1) / 2.0 + 0.5),
+                    floor((b - 0.5) + (cy / cw + 1.0) * (t - b + 1) / 2.0 + 0.5))
+        ctx.cpos_z = lo if zi < lo else hi if zi > hi else zi  # (min(max(...)))
 
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): set the current character position to this "
                     f"{'2-D ' if dim == 2 else ''}point transformed to window "
                     f"coordinates (cmov(3G)).")
-    return call
+    return gl_function(record=True, binds=(0, math.inf, ()))(call)
 
 
 cmov, cmovi, cmovs = (_make_cmov(3, s) for s in ("", "i", "s"))

@@ -95,6 +95,11 @@ class Context:
         self.prim: str | None = None
         self.concave = False
         self.linestyle_pos = 0  # line-style position after the last line drawn
+        # A move(3G) under resetls(TRUE) since the last line recorded: the next line
+        # starts the pattern at 0.  The move sets it (no drain); a draw records it in
+        # its segment (DRAW_RESTART), any other line applies it at its start
+        # (restart_pattern), both in drawing order (gl/_oldstyle.py).
+        self.ls_restart = False
         self.resetls = True  # resetls(3G): the pattern restarts at each line
         self.lsbackup = False  # lsbackup(3G): the last two pixels drawn whatever the style
         # clipplane(3G) (gl/_clip.py): the six planes' eye-space equations (None:
@@ -251,9 +256,19 @@ class Context:
         """
         if len(self.stream):
             drain(self)  # what the stream holds was drawn first
+        if self.ls_restart and kind in ("line", "closedline"):
+            self.restart_pattern()
         pipeline_draw_arrays(self, self.draw_state(), self.lmcolor_set, kind, obj, colours,
                              normals, lit, swaps, indices, provoking, pattern_offset,
                              texcoords=texcoords)
+
+    def restart_pattern(self) -> None:
+        """Apply a pending move's pattern restart (:attr:`ls_restart`) before a line
+        that is not a draw segment: the stream's lines before it are drawn first (they
+        move :attr:`linestyle_pos`), then the position is 0, as the move left it."""
+        drain(self)
+        self.linestyle_pos = 0
+        self.ls_restart = False
 
     # -- clears, readback, frames ------------------------------------------------------
     def clear_planes(self, planes: int, colour: int = 0, z: int = ZMAX, stencil: int = 0) -> None:

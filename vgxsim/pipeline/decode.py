@@ -24,6 +24,8 @@ from vgxsim.state.raster import needs_colour
 from vgxsim.stream.opcodes import (
     CLEAR_KIND,
     CLOSEDLINE,
+    DRAW_RESTART,
+    DRAW_SEG,
     LINE,
     NAME_OF,
     P_CLEAR,
@@ -99,9 +101,15 @@ def _select_prims(ctx, records, pos, prims, swaps, clears) -> None:
         if kind == CLEAR_KIND:
             _clear(ctx, clears[r[P_CLEAR]])
             continue
+        if kind == DRAW_RESTART:
+            # A move under resetls(TRUE) put the position at 0 while picking too
+            # (nothing picked moves it on).
+            ctx.linestyle_pos = 0
         if v1 == v0:
             continue
-        name = "polygon" if kind in (POLYGON, PMV) else NAME_OF[kind]
+        # (draw(3G) segments are lines to the hit test)
+        name = ("polygon" if kind in (POLYGON, PMV) else
+                "line" if kind in (DRAW_SEG, DRAW_RESTART) else NAME_OF[kind])
         rec = records[r[P_STATE]]
         ctx.select_hook(name, apply(pos[v0:v1], rec.mvp), swaps[r[P_SWAP0]:r[P_SWAP1]].tolist(),
                         None, rec.user_planes)
@@ -153,6 +161,12 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
     # differ at most in fragment state) and one lmcolor_set.
     brk = np.ones(npr, bool)
     brk[1:] = ~(tri[1:] & tri[:-1] & (key[1:] == key[:-1]))
+    # ... or: draw(3G) segments after one under the same record (one polyline of
+    # disjoint segments: the pattern runs on from each to the next, or restarts).
+    if draw.MERGE_SEGMENTS:
+        seg = (kinds == DRAW_SEG) | (kinds == DRAW_RESTART)
+        brk[1:] &= ~(seg[1:] & seg[:-1] & (prims[1:, P_STATE] == prims[:-1, P_STATE])
+                     & (prims[1:, P_LMCOLOR_SET] == prims[:-1, P_LMCOLOR_SET]))
     first = np.flatnonzero(brk)
     starts = first.tolist()
     ends = starts[1:] + [npr]
@@ -181,6 +195,20 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
         state = records[si]
         sl = slice(v0, v1)
         lit = _lit(state, sent[sl])
+        if kind == DRAW_SEG or kind == DRAW_RESTART:
+            restarts = prims[a:b, P_KIND] == DRAW_RESTART
+            if state.lsbackup and b - a > 1:
+                # lsbackup(3G) draws the last two pixels of each line: one job a
+                # segment (each its own polyline), as drawn at the call.
+                for r in range(a, b):
+                    ps = slice(v0 + 2 * (r - a), v0 + 2 * (r - a) + 2)
+                    jobs.append((_draw_segments, (ctx, restarts[r - a:r - a + 1], state,
+                                                  bool(lms), pos[ps], col[ps], nrm[ps],
+                                                  lit[2 * (r - a):2 * (r - a) + 2]), {}))
+                continue
+            jobs.append((_draw_segments, (ctx, restarts, state, bool(lms), pos[sl], col[sl],
+                                          nrm[sl], lit), {}))
+            continue
         if not tri_l[g]:
             # Lines and points: one primitive per group (the line-style pattern
             # restarts at every bgnline).
@@ -221,6 +249,22 @@ def _draw_groups(ctx, records, pos, col, nrm, sent, prims, swaps, tc, clears) ->
         if "lit_rgba" in kw:
             kw = {**kw, "lit_rgba": shaded[kw["lit_rgba"]]}
         fn(*args, **kw)
+
+
+def _draw_segments(ctx, restarts: np.ndarray, state, lms: bool, pos, col, nrm, lit) -> None:
+    """draw(3G) segments recorded in a row under one record (DRAW_SEG and
+    DRAW_RESTART rows, two vertices each; ``restarts`` says which are the latter):
+    one polyline whose pattern starts where the last line drawn before it left
+    Context.linestyle_pos -- read here, when the jobs run in drawing order, not when
+    the rows were collected -- runs on from segment to segment and is at 0 at each
+    restart, a move under resetls(TRUE) before it (docs/numeric_model.md s. 5), as
+    when each draw was drawn at its call."""
+    if restarts[0]:
+        ctx.linestyle_pos = 0
+    n = pos.shape[0] // 2
+    segs = np.arange(2 * n, dtype=np.int64).reshape(n, 2)
+    draw_arrays(ctx, state, lms, "line", pos, col, nrm, lit, pattern_offset=ctx.linestyle_pos,
+                private=True, segments=segs, restarts=restarts if n > 1 else None)
 
 
 def _wants_colour(state) -> bool:

@@ -30,6 +30,13 @@ from .records import DrawState, same_projection, same_state
 #: False: one pass per record (tests/stream/test_random_streams.py compares).
 MERGE_FRAGMENT_STATES = True
 
+#: Fast-path switch: at a flush, consecutive draw(3G) segments under one record
+#: (DRAW_SEG and DRAW_RESTART rows, pipeline/decode.py) are drawn as one polyline of
+#: disjoint segments, the pattern running on from each to the next and restarting
+#: at 0 at each DRAW_RESTART.  False: one line per segment
+#: (tests/gl/test_move_draw_stream.py compares).
+MERGE_SEGMENTS = True
+
 #: Fast-path switch: at a flush, the lit triangle groups under the same lights and
 #: lighting model are lit in one pass (:func:`shade_groups`: the 1991 frame lights a
 #: floor and a few small objects, each with its own material and matrix, per pass).
@@ -337,12 +344,18 @@ def as_homogeneous(obj) -> np.ndarray:
 
 def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colours=None,
                 normals=None, lit=None, swaps=(), indices=None, provoking=None,
-                pattern_offset: int = 0, private: bool = False, texcoords=None) -> None:
+                pattern_offset: int = 0, private: bool = False, texcoords=None,
+                segments=None, restarts=None) -> None:
     """Draw one primitive (or a mesh, with ``indices``) with ``state``.
 
     See :meth:`vgxsim.pipeline.context.Context.draw_arrays` for the parameters;
     ``private`` says the arrays are already private float64 (N, 4) copies;
-    ``texcoords`` (N, 2) are per-vertex t2* coordinates (triangles only).
+    ``texcoords`` (N, 2) are per-vertex t2* coordinates (triangles only);
+    ``segments`` (S, 2) int64, lines only: the vertex pairs to draw, in order, as one
+    polyline's segments (the pattern continues from each to the next), in place of
+    the line's own (draw(3G) segments recorded in a row, pipeline/decode.py), and
+    ``restarts`` (S,) bool with them: the segments at which the pattern restarts at 0
+    (a move under resetls(TRUE) came before; the first one's restart is the caller's).
     """
     direct = False
     if not private:
@@ -404,11 +417,12 @@ def draw_arrays(ctx, state: DrawState, lmcolor_set: bool, kind: str, obj, colour
             rgba = np.array(cols, dtype=np.float64)
         rgba = vertex_colour_stage(state, obj, rgba)
     if kind in (LINE, CLOSEDLINE):
-        segs = assembly.line_segments(n, kind == CLOSEDLINE)
+        segs = (assembly.line_segments(n, kind == CLOSEDLINE) if segments is None
+                else segments)
         # resetls(FALSE): the pattern continues from the last line drawn.
         start = int(pattern_offset) if state.resetls else ctx.linestyle_pos
         ctx.linestyle_pos = draw_polyline(ctx.raw_batch, rs, view, obj, rgba, segs, start,
-                                          state.lsbackup)
+                                          state.lsbackup, restarts)
         return
     draw_points(ctx.raw_batch, rs, view, obj, rgba)
 

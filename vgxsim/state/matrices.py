@@ -25,7 +25,10 @@ load/mult stores a new array), so the two stack entries cannot diverge through
 aliasing.  ``translate`` (:data:`DEFER_TRANSLATE`) only notes its offsets; the
 product ``translation @ current`` is formed, with exactly the numpy operations
 ``mult`` would have used and in call order, when the matrix is next read or changed
-(:meth:`MatrixState._settle`), and never when a ``popmatrix`` discards it first.
+(:meth:`MatrixState._settle`), and never when a ``popmatrix`` discards it first;
+rot, rotate, scale, multmatrix and loadmatrix's valid paths defer theirs in the same
+list (:data:`DEFER_PRODUCTS`: ``rotate_axis``, ``scale_by``, ``mult_by`` and the
+load's store replayed in order).
 
 A new window starts in MSINGLE with the pixel-unit 2-D projection loaded
 (:meth:`reset`, called by winopen; greset(3G) "loads a 2-D orthographic projection", the
@@ -46,6 +49,16 @@ _IDENTITY.flags.writeable = False
 #: Fast path switch: translate() defers its matrix product until the matrix is read
 #: (False: every translate multiplies at once; the planes are the same either way).
 DEFER_TRANSLATE = True
+#: Fast path switch: rot, rotate, scale, multmatrix and loadmatrix's valid paths
+#: (:meth:`MatrixState.rotate`, :meth:`~MatrixState.scale`,
+#: :meth:`~MatrixState.mult_deferred`, :meth:`~MatrixState.load_deferred`) defer their
+#: products with translate's, replayed in call order by the same rotate_axis,
+#: scale_by, mult_by and store (False: they multiply at once; the matrices are the
+#: same bit for bit either way).
+DEFER_PRODUCTS = True
+
+#: Kinds of a deferred product (MatrixState._pending entries: (kind, *arguments)).
+_TRANSLATE, _ROTATE, _SCALE, _MULT, _LOAD = 0, 1, 2, 3, 4
 
 
 def _translation(x: float, y: float, z: float) -> np.ndarray:
@@ -75,7 +88,8 @@ class MatrixState:
         self._saved = None
         self._mvp = None
         self._mv_inv_t = None
-        self._pending: list | None = None  # deferred translate() offsets, in call order
+        self._flat: tuple | None = None  # (the mvp, its 16 entries): mvp_flat's memo
+        self._pending: list | None = None  # deferred products (kind, *args), call order
         # rotate_axis and scale_by's matrices, overwritten at each call (only their
         # products are kept): identity but for the entries a call writes.
         self._scratch = {k: np.eye(4) for k in "xyzs"}
@@ -89,8 +103,18 @@ class MatrixState:
         pending = self._pending
         if pending is not None:
             self._pending = None
-            for x, y, z in pending:
-                self.mult(_translation(x, y, z))
+            for op in pending:
+                kind = op[0]
+                if kind == _TRANSLATE:
+                    self.mult(_translation(op[1], op[2], op[3]))
+                elif kind == _ROTATE:
+                    self.rotate_axis(op[1], op[2])
+                elif kind == _SCALE:
+                    self.scale_by(op[1], op[2], op[3])
+                elif kind == _MULT:
+                    self.mult_by(op[1].reshape(4, 4))
+                else:
+                    self._store(op[1].reshape(4, 4))  # (load_owned, settled already)
 
     def translate(self, x: float, y: float, z: float) -> None:
         """``mult(translation(x, y, z))``, deferred (see the module docstring)."""
@@ -98,9 +122,57 @@ class MatrixState:
             self.mult(_translation(x, y, z))
             return
         if self._pending is None:
-            self._pending = [(x, y, z)]
+            self._pending = [(_TRANSLATE, x, y, z)]
         else:
-            self._pending.append((x, y, z))
+            self._pending.append((_TRANSLATE, x, y, z))
+        self._mvp = None
+        self._mv_inv_t = None
+
+    def rotate(self, degrees: float, axis: str) -> None:
+        """:meth:`rotate_axis`, deferred with the translations (:data:`DEFER_PRODUCTS`;
+        not while picking, as translate)."""
+        if not DEFER_PRODUCTS or self.pick is not None:
+            self.rotate_axis(degrees, axis)
+            return
+        if self._pending is None:
+            self._pending = [(_ROTATE, degrees, axis)]
+        else:
+            self._pending.append((_ROTATE, degrees, axis))
+        self._mvp = None
+        self._mv_inv_t = None
+
+    def mult_deferred(self, m: np.ndarray) -> None:
+        """:meth:`mult_by` of a float64 array of 16 (or (4, 4)) no one else holds
+        (multmatrix's valid path), deferred as :meth:`rotate`."""
+        if not DEFER_PRODUCTS or self.pick is not None:
+            self.mult_by(m.reshape(4, 4))
+            return
+        if self._pending is None:
+            self._pending = [(_MULT, m)]
+        else:
+            self._pending.append((_MULT, m))
+        self._mvp = None
+        self._mv_inv_t = None
+
+    def load_deferred(self, m: np.ndarray) -> None:
+        """:meth:`load_owned` (loadmatrix's valid path), deferred as :meth:`rotate`:
+        the products noted before it are dropped, as the load would overwrite them."""
+        if not DEFER_PRODUCTS or self.pick is not None:
+            self.load_owned(m.reshape(4, 4))
+            return
+        self._pending = [(_LOAD, m)]
+        self._mvp = None
+        self._mv_inv_t = None
+
+    def scale(self, x: float, y: float, z: float) -> None:
+        """:meth:`scale_by`, deferred as :meth:`rotate`."""
+        if not DEFER_PRODUCTS or self.pick is not None:
+            self.scale_by(x, y, z)
+            return
+        if self._pending is None:
+            self._pending = [(_SCALE, x, y, z)]
+        else:
+            self._pending.append((_SCALE, x, y, z))
         self._mvp = None
         self._mv_inv_t = None
 
@@ -289,6 +361,16 @@ class MatrixState:
             else:
                 self._mvp = self.modelview[-1] @ self.projection
         return self._mvp
+
+    def mvp_flat(self) -> list[float]:
+        """The :meth:`mvp`'s 16 entries as Python floats, row-major (``m[4 * r + c]``),
+        kept while the mvp object is the same (it is replaced on change, never
+        mutated): for the one-point transforms of the gl layer (cmov(3G))."""
+        m = self.mvp()
+        memo = self._flat
+        if memo is None or memo[0] is not m:
+            memo = self._flat = (m, m.ravel().tolist())
+        return memo[1]
 
     def normal_matrix(self) -> np.ndarray:
         """Inverse transpose of the modelview's upper 3x3 (row-vector form)."""

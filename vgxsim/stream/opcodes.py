@@ -49,6 +49,13 @@ CLEAR = 12
 POLYGON, TMESH, QSTRIP, LINE, CLOSEDLINE, POINT, PMV = range(7)
 #: The primitive-table kind of a decoded CLEAR (no vertices; P_CLEAR names it).
 CLEAR_KIND = 7
+#: BGN kinds of one draw(3G) segment (gl/_oldstyle.py): two vertices, the current
+#: graphics position and the new point, drawn as a line whose line-style pattern
+#: starts where the last line drawn left it (Context.linestyle_pos, read when the
+#: stream is decoded, in drawing order) -- or, DRAW_RESTART, at 0: a move(3G) under
+#: resetls(TRUE) came first.  Recorded, not drawn at the call, so a move/draw
+#: program costs no flush per segment.
+DRAW_SEG, DRAW_RESTART = 8, 9
 #: (Read-only mappings: constants, not process state.)
 KIND_OF = MappingProxyType({"polygon": POLYGON, "tmesh": TMESH, "qstrip": QSTRIP,
                             "line": LINE, "closedline": CLOSEDLINE, "point": POINT,
