@@ -2,7 +2,7 @@
 
     python bench/startup.py [--rounds N] [--workload triangle|shadows|all]
                             [--python NAME=PATH ...] [--serial]
-                            [--variant NAME=VAR=VALUE[,VAR=VALUE...] ...]
+                            [--variant NAME=VAR=VALUE[,VAR=VALUE...] ...] [--no-pyc]
 
 Each measurement is one new ``python -c`` process: the time runs from just before
 the process is started to the moment its first image exists, so it includes the
@@ -12,6 +12,13 @@ first frame's Python work.  *Cold*: ``NUMBA_CACHE_DIR`` is a new, empty folder;
 are given for the process and, apart, for its children (the parallel-compile
 helper of vgxsim/coldstart.py): on a loaded machine they move less than wall time,
 and on an idle one with two CPUs the larger of the two bounds the cold start.
+
+Python's own bytecode cache goes with the Numba cache: ``PYTHONPYCACHEPREFIX`` is a
+folder inside it and ``PYTHONDONTWRITEBYTECODE`` is cleared, so a cold run also
+compiles vgxsim's sources to bytecode and a warm one reads them as an installed
+package would (where the environment sets PYTHONDONTWRITEBYTECODE, as this
+project's machines do, every "warm" run used to compile some 130 modules again:
+about 0.5 s CPU, bench/startup.py --no-pyc measures that way).
 
 Workloads:
 
@@ -104,11 +111,19 @@ atexit.register(lambda: print("COMPILES " + json.dumps(_rows)))
 """
 
 
+#: Whether runs keep Python's bytecode with the Numba cache (see the module docstring).
+PYC = True
+
+
 def run_once(python: str, code: str, cache: str, out: str, env_extra: dict
              ) -> tuple[float, float, float]:
     """Wall seconds to the first image, CPU seconds of the process and of its helper
     (children finished by then) in one run."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=cache, **env_extra)
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+    if PYC:
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env["PYTHONPYCACHEPREFIX"] = os.path.join(cache, "pyc")
+    env.update(env_extra)
     t0 = time.time()
     proc = subprocess.run([python, "-c", code, repr(t0), out], capture_output=True,
                           text=True, env=env, cwd=tempfile.gettempdir())
@@ -180,7 +195,11 @@ def main(argv=None) -> int:
                     help="list the compiles of each workload's first image and exit")
     ap.add_argument("--serial", action="store_true",
                     help="also this interpreter with VGXSIM_PARALLEL_COMPILE=0")
+    ap.add_argument("--no-pyc", action="store_true",
+                    help="leave PYTHONDONTWRITEBYTECODE / PYTHONPYCACHEPREFIX as they are")
     args = ap.parse_args(argv)
+    global PYC
+    PYC = not args.no_pyc
     variants = [("this", sys.executable, {})]
     if args.serial:
         variants.append(("serial", sys.executable, {"VGXSIM_PARALLEL_COMPILE": "0"}))
