@@ -107,7 +107,8 @@ from .tiles import (
 NARROW = 8  # triangles at most this many pixels wide find their spans by scanning
 
 #: Whether the band kernel compiles its rare paths in: the general per-fragment rows
-#: (:func:`_general_row`, with the texture stage), :func:`_colour_span_slow` and the
+#: (:func:`_general_row`, with the texture stage), :func:`_colour_span_slow`, the
+#: SA+MSA blend spans (:func:`_alpha_span`, :func:`.lit.alpha_span_lanes`) and the
 #: fragment runs of points and lines.  True in :func:`render_bands`; False in
 #: :data:`render_bands_lean`, the same code compiled without them for batches that
 #: never take them (:func:`lean_fits`): a cold start compiles only what the first
@@ -457,7 +458,9 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
         sref = st[S_SREF] & smask
         slt, seq, sgt = cmp_bits(sfunc)
         add = blend == CBLEND_ADD
-        if (blend == CBLEND_SA_MSA and lit_lanes and vector_pack
+        if not _FULL and blend == CBLEND_SA_MSA:
+            pass  # (lean_fits: a lean batch has no SA+MSA blend)
+        elif (blend == CBLEND_SA_MSA and lit_lanes and vector_pack
                 and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                              adx)):
             alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
@@ -799,7 +802,8 @@ def lean_fits(derived: np.ndarray, nruns: int, edge_mode: bool, general_only: bo
     True when no primitive can reach a path the lean copy leaves out: no fragment
     runs, neither test switch, and every state's derived mode one of the span loops
     (:func:`_triangle_rows`), with MODE_COLOUR only where the z test is on and the
-    blend is not general (else :func:`_colour_span_slow`).  States of the table
+    blend is replace or ONE+ONE (not general: :func:`_colour_span_slow`; not
+    SA+MSA: :func:`_alpha_span`).  States of the table
     that no primitive uses count too (a safe over-approximation).
 
     Parameters
@@ -815,7 +819,8 @@ def lean_fits(derived: np.ndarray, nruns: int, edge_mode: bool, general_only: bo
         return False
     mode = derived[:, D_MODE]
     colour = mode == MODE_COLOUR
-    slow = colour & ((derived[:, D_ZTEST] == 0) | (derived[:, D_CBLEND] == CBLEND_GENERAL))
+    slow = colour & ((derived[:, D_ZTEST] == 0) | (derived[:, D_CBLEND] == CBLEND_GENERAL)
+                     | (derived[:, D_CBLEND] == CBLEND_SA_MSA))
     spans = ((mode == MODE_ZSTENCIL_ADD) | (mode == MODE_ZSTENCIL) | (mode == MODE_ZONLY)
              | colour)
     return bool(spans.all() and not slow.any())
