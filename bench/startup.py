@@ -90,21 +90,25 @@ import numba
 WORKLOADS = {"triangle": TRIANGLE, "shadows": SHADOWS}
 
 # --compiles: every Numba compile of the first image (one process, empty cache, no
-# helper), with its own time (nested compiles of callees subtracted).
+# helper), with its own CPU time (nested compiles of callees subtracted) and the
+# kernel called from Python whose compile it was part of (its tree).
 COUNTER = r"""
 import json, sys, time
 from numba.core import event
 _stack, _rows = [], []
+def _name(ev):
+    f = ev.data["dispatcher"].py_func
+    return f.__module__ + "." + f.__qualname__
 class _Count(event.Listener):
     def on_start(self, ev):
-        _stack.append([time.perf_counter(), 0.0])
+        _stack.append([time.process_time(), 0.0, _name(ev)])
     def on_end(self, ev):
-        t, nested = _stack.pop()
-        dt = time.perf_counter() - t
+        t, nested, name = _stack.pop()
+        dt = time.process_time() - t
         if _stack:
             _stack[-1][1] += dt
-        f = ev.data["dispatcher"].py_func
-        _rows.append((f.__module__ + "." + f.__qualname__, str(ev.data["args"]), dt - nested))
+        root = _stack[0][2] if _stack else name
+        _rows.append((name, str(ev.data["args"]), dt - nested, root))
 event.register("numba:compile", _Count())
 import atexit
 atexit.register(lambda: print("COMPILES " + json.dumps(_rows)))
@@ -148,7 +152,8 @@ def start_times(code: str = TRIANGLE, python: str = sys.executable, warm_runs: i
 
 
 def compiles(code: str, python: str = sys.executable) -> list:
-    """[(function, argument types, own seconds)] of every compile of one cold run."""
+    """[(function, argument types, own CPU seconds, tree)] of every compile of one cold
+    run; ``tree`` is the kernel called from Python whose compile it was part of."""
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, NUMBA_CACHE_DIR=cache, VGXSIM_PARALLEL_COMPILE="0")
         proc = subprocess.run([python, "-c", COUNTER + code, repr(time.time()),
@@ -162,9 +167,13 @@ def compiles(code: str, python: str = sys.executable) -> list:
 
 
 def print_compiles(workload: str, rows: list) -> None:
-    """Compiles per function (specialisations), vgxsim kernels first, by own time."""
+    """Compile CPU per tree, then per function (specialisations), by own time."""
     per: dict[str, list] = {}
-    for name, _, own in rows:
+    trees: dict[str, float] = {}
+    for _, _, own, root in rows:
+        key = root.replace("vgxsim.kernels.", "")
+        trees[key] = trees.get(key, 0.0) + own
+    for name, _, own, _ in rows:
         key = name.split(".<locals>")[0].replace("vgxsim.kernels.", "")
         per.setdefault(key, [0, 0.0])
         per[key][0] += 1
@@ -172,7 +181,11 @@ def print_compiles(workload: str, rows: list) -> None:
     ours = sum(n for k, (n, _) in per.items() if not k.startswith("numba."))
     print(f"\n{workload}: {len(rows)} compiles, {ours} of vgxsim kernels in "
           f"{sum(1 for k in per if not k.startswith('numba.'))} functions; "
-          f"own seconds {sum(r[2] for r in rows):.1f}")
+          f"own CPU seconds {sum(r[2] for r in rows):.1f}")
+    print(" by tree (a kernel called from Python, with all it compiled):")
+    for key, own in sorted(trees.items(), key=lambda kv: -kv[1]):
+        print(f"  {own:6.2f} s  {key}")
+    print(" by function:")
     for key, (n, own) in sorted(per.items(), key=lambda kv: -kv[1][1]):
         more = f"  x{n}" if n > 1 else ""
         print(f"  {own:6.2f} s  {key}{more}")
