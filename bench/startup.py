@@ -2,7 +2,7 @@
 
     python bench/startup.py [--rounds N] [--workload triangle|shadows|all]
                             [--python NAME=PATH ...] [--serial]
-                            [--variant NAME=VAR=VALUE[,VAR=VALUE...] ...]
+                            [--variant NAME=VAR=VALUE[,VAR=VALUE...] ...] [--no-pyc]
 
 Each measurement is one new ``python -c`` process: the time runs from just before
 the process is started to the moment its first image exists, so it includes the
@@ -12,6 +12,13 @@ first frame's Python work.  *Cold*: ``NUMBA_CACHE_DIR`` is a new, empty folder;
 are given for the process and, apart, for its children (the parallel-compile
 helper of vgxsim/coldstart.py): on a loaded machine they move less than wall time,
 and on an idle one with two CPUs the larger of the two bounds the cold start.
+
+Python's own bytecode cache goes with the Numba cache: ``PYTHONPYCACHEPREFIX`` is a
+folder inside it and ``PYTHONDONTWRITEBYTECODE`` is cleared, so a cold run also
+compiles vgxsim's sources to bytecode and a warm one reads them as an installed
+package would (where the environment sets PYTHONDONTWRITEBYTECODE, as this
+project's machines do, every "warm" run used to compile some 130 modules again:
+about 0.5 s CPU, bench/startup.py --no-pyc measures that way).
 
 Workloads:
 
@@ -83,32 +90,44 @@ import numba
 WORKLOADS = {"triangle": TRIANGLE, "shadows": SHADOWS}
 
 # --compiles: every Numba compile of the first image (one process, empty cache, no
-# helper), with its own time (nested compiles of callees subtracted).
+# helper), with its own CPU time (nested compiles of callees subtracted) and the
+# kernel called from Python whose compile it was part of (its tree).
 COUNTER = r"""
 import json, sys, time
 from numba.core import event
 _stack, _rows = [], []
+def _name(ev):
+    f = ev.data["dispatcher"].py_func
+    return f.__module__ + "." + f.__qualname__
 class _Count(event.Listener):
     def on_start(self, ev):
-        _stack.append([time.perf_counter(), 0.0])
+        _stack.append([time.process_time(), 0.0, _name(ev)])
     def on_end(self, ev):
-        t, nested = _stack.pop()
-        dt = time.perf_counter() - t
+        t, nested, name = _stack.pop()
+        dt = time.process_time() - t
         if _stack:
             _stack[-1][1] += dt
-        f = ev.data["dispatcher"].py_func
-        _rows.append((f.__module__ + "." + f.__qualname__, str(ev.data["args"]), dt - nested))
+        root = _stack[0][2] if _stack else name
+        _rows.append((name, str(ev.data["args"]), dt - nested, root))
 event.register("numba:compile", _Count())
 import atexit
 atexit.register(lambda: print("COMPILES " + json.dumps(_rows)))
 """
 
 
+#: Whether runs keep Python's bytecode with the Numba cache (see the module docstring).
+PYC = True
+
+
 def run_once(python: str, code: str, cache: str, out: str, env_extra: dict
              ) -> tuple[float, float, float]:
     """Wall seconds to the first image, CPU seconds of the process and of its helper
     (children finished by then) in one run."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=cache, **env_extra)
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+    if PYC:
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env["PYTHONPYCACHEPREFIX"] = os.path.join(cache, "pyc")
+    env.update(env_extra)
     t0 = time.time()
     proc = subprocess.run([python, "-c", code, repr(t0), out], capture_output=True,
                           text=True, env=env, cwd=tempfile.gettempdir())
@@ -133,7 +152,8 @@ def start_times(code: str = TRIANGLE, python: str = sys.executable, warm_runs: i
 
 
 def compiles(code: str, python: str = sys.executable) -> list:
-    """[(function, argument types, own seconds)] of every compile of one cold run."""
+    """[(function, argument types, own CPU seconds, tree)] of every compile of one cold
+    run; ``tree`` is the kernel called from Python whose compile it was part of."""
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, NUMBA_CACHE_DIR=cache, VGXSIM_PARALLEL_COMPILE="0")
         proc = subprocess.run([python, "-c", COUNTER + code, repr(time.time()),
@@ -147,9 +167,13 @@ def compiles(code: str, python: str = sys.executable) -> list:
 
 
 def print_compiles(workload: str, rows: list) -> None:
-    """Compiles per function (specialisations), vgxsim kernels first, by own time."""
+    """Compile CPU per tree, then per function (specialisations), by own time."""
     per: dict[str, list] = {}
-    for name, _, own in rows:
+    trees: dict[str, float] = {}
+    for _, _, own, root in rows:
+        key = root.replace("vgxsim.kernels.", "")
+        trees[key] = trees.get(key, 0.0) + own
+    for name, _, own, _ in rows:
         key = name.split(".<locals>")[0].replace("vgxsim.kernels.", "")
         per.setdefault(key, [0, 0.0])
         per[key][0] += 1
@@ -157,7 +181,11 @@ def print_compiles(workload: str, rows: list) -> None:
     ours = sum(n for k, (n, _) in per.items() if not k.startswith("numba."))
     print(f"\n{workload}: {len(rows)} compiles, {ours} of vgxsim kernels in "
           f"{sum(1 for k in per if not k.startswith('numba.'))} functions; "
-          f"own seconds {sum(r[2] for r in rows):.1f}")
+          f"own CPU seconds {sum(r[2] for r in rows):.1f}")
+    print(" by tree (a kernel called from Python, with all it compiled):")
+    for key, own in sorted(trees.items(), key=lambda kv: -kv[1]):
+        print(f"  {own:6.2f} s  {key}")
+    print(" by function:")
     for key, (n, own) in sorted(per.items(), key=lambda kv: -kv[1][1]):
         more = f"  x{n}" if n > 1 else ""
         print(f"  {own:6.2f} s  {key}{more}")
@@ -180,7 +208,11 @@ def main(argv=None) -> int:
                     help="list the compiles of each workload's first image and exit")
     ap.add_argument("--serial", action="store_true",
                     help="also this interpreter with VGXSIM_PARALLEL_COMPILE=0")
+    ap.add_argument("--no-pyc", action="store_true",
+                    help="leave PYTHONDONTWRITEBYTECODE / PYTHONPYCACHEPREFIX as they are")
     args = ap.parse_args(argv)
+    global PYC
+    PYC = not args.no_pyc
     variants = [("this", sys.executable, {})]
     if args.serial:
         variants.append(("serial", sys.executable, {"VGXSIM_PARALLEL_COMPILE": "0"}))

@@ -12,6 +12,8 @@ lines expanded by :mod:`.lines`) and clears.
 
 from __future__ import annotations
 
+import types as _types
+
 import numpy as np
 
 from vgxsim.state.codes import (
@@ -105,6 +107,15 @@ from .tiles import (
 )
 
 NARROW = 8  # triangles at most this many pixels wide find their spans by scanning
+
+#: Whether the band kernel compiles its rare paths in: the general per-fragment rows
+#: (:func:`_general_row`, with the texture stage), :func:`_colour_span_slow`, the
+#: SA+MSA blend spans (:func:`_alpha_span`, :func:`.lit.alpha_span_lanes`) and the
+#: fragment runs of points and lines.  True in :func:`render_bands`; False in
+#: :data:`render_bands_lean`, the same code compiled without them for batches that
+#: never take them (:func:`lean_fits`): a cold start compiles only what the first
+#: image needs (issue 7 item 4; the pruned calls are removed before typing).
+_FULL = True
 
 
 @jit
@@ -383,7 +394,7 @@ def _triangle_rows(
                     zi = round_z(za + dzdx * (x - x0), zmin, zmax)
                     if cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux])):
                         zbuf[uy, ux] = wrap_z24(zi)
-            else:
+            elif _FULL:  # (lean_fits: no state of a lean batch gets here)
                 _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colour,
                              edge_mode and not full, st, dv, tab, front, back, zbuf, sten, tex)
     work[WORK_FRAGMENTS] += tested
@@ -449,7 +460,9 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
         sref = st[S_SREF] & smask
         slt, seq, sgt = cmp_bits(sfunc)
         add = blend == CBLEND_ADD
-        if (blend == CBLEND_SA_MSA and lit_lanes and vector_pack
+        if not _FULL and blend == CBLEND_SA_MSA:
+            pass  # (lean_fits: a lean batch has no SA+MSA blend)
+        elif (blend == CBLEND_SA_MSA and lit_lanes and vector_pack
                 and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                              adx)):
             alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
@@ -518,8 +531,9 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
                 out = add_sat(src, dst) if add else src
                 cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
         return
-    _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
-                      front, back, zbuf, sten)
+    if _FULL:  # (lean_fits: no state of a lean batch gets here)
+        _colour_span_slow(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
+                          front, back, zbuf, sten)
 
 
 @callee
@@ -800,12 +814,66 @@ def render_bands(
                     tex,
                 )
             elif kind == KIND_FRAGMENTS:
-                s = r_state[ref]
-                _fragment_run(ref, y_lo, y_hi, f_xy, f_z, f_rgba, r_range,
-                              states[s], derived[s], tables[s],
-                              front, back, zbuf, sten, tb, bw)
+                if _FULL:  # (lean_fits: a lean batch has no fragment runs)
+                    s = r_state[ref]
+                    _fragment_run(ref, y_lo, y_hi, f_xy, f_z, f_rgba, r_range,
+                                  states[s], derived[s], tables[s],
+                                  front, back, zbuf, sten, tb, bw)
             else:
                 s = c_state[ref]
                 _clear_rows(ref, y_lo, y_hi, c_vals, states[s], derived[s],
                             front, back, zbuf, sten, tb)
     keep_alive(tb_own, runs_own, spans_own)
+
+
+def lean_fits(derived: np.ndarray, nruns: int, edge_mode: bool, general_only: bool) -> bool:
+    """Whether :data:`render_bands_lean` draws a batch as :func:`render_bands` does.
+
+    True when no primitive can reach a path the lean copy leaves out: no fragment
+    runs, neither test switch, and every state's derived mode one of the span loops
+    (:func:`_triangle_rows`), with MODE_COLOUR only where the z test is on and the
+    blend is replace or ONE+ONE (not general: :func:`_colour_span_slow`; not
+    SA+MSA: :func:`_alpha_span`).  States of the table
+    that no primitive uses count too (a safe over-approximation).
+
+    Parameters
+    ----------
+    derived : ndarray, shape (S, D_SIZE), int64
+        :func:`vgxsim.state.derive.derive_states` rows of the batch's states.
+    nruns : int
+        Fragment runs (points and lines) queued.
+    edge_mode, general_only : bool
+        The batch's test switches.
+    """
+    if nruns or edge_mode or general_only:
+        return False
+    mode = derived[:, D_MODE]
+    colour = mode == MODE_COLOUR
+    slow = colour & ((derived[:, D_ZTEST] == 0) | (derived[:, D_CBLEND] == CBLEND_GENERAL)
+                     | (derived[:, D_CBLEND] == CBLEND_SA_MSA))
+    spans = ((mode == MODE_ZSTENCIL_ADD) | (mode == MODE_ZSTENCIL) | (mode == MODE_ZONLY)
+             | colour)
+    return bool(spans.all() and not slow.any())
+
+
+def _lean_copy(kernel, globs: dict, name: str):
+    """The Python function of ``kernel`` (a dispatcher, or the function itself under
+    NUMBA_DISABLE_JIT) reading its globals from ``globs``, named ``name`` (Numba's
+    cache files are named after the qualified name: the copy gets its own)."""
+    f = getattr(kernel, "py_func", kernel)
+    copy = _types.FunctionType(f.__code__, globs, name, f.__defaults__, f.__closure__)
+    copy.__qualname__ = name
+    copy.__doc__ = f.__doc__
+    return copy
+
+
+# The lean copy: the same code objects with _FULL False in their globals, so Numba's
+# dead-branch pruning drops the rare calls before type inference and never compiles
+# them; the inlined helpers are copied too, as the inliner reads their own globals.
+_LEAN_GLOBALS = dict(globals(), _FULL=False)
+_LEAN_GLOBALS["_colour_span"] = inline_ir(_lean_copy(_colour_span, _LEAN_GLOBALS,
+                                                     "_colour_span_lean"))
+_LEAN_GLOBALS["_triangle_rows"] = inline_ir(_lean_copy(_triangle_rows, _LEAN_GLOBALS,
+                                                       "_triangle_rows_lean"))
+#: :func:`render_bands` without the paths :func:`lean_fits` rules out (same arguments).
+render_bands_lean = jit(_lean_copy(render_bands, _LEAN_GLOBALS, "render_bands_lean"))

@@ -17,7 +17,13 @@ from vgxsim.kernels.band_order import band_counts, scatter_records
 from vgxsim.kernels.clip import snap_window
 from vgxsim.kernels.front import front_assemble, front_slots, front_vertices
 from vgxsim.kernels.queue import queue_triangles
-from vgxsim.kernels.render import bin_primitives, gather_band_records, render_bands
+from vgxsim.kernels.render import (
+    bin_primitives,
+    gather_band_records,
+    lean_fits,
+    render_bands,
+    render_bands_lean,
+)
 from vgxsim.kernels.setup import setup_triangles_states
 from vgxsim.kernels.texture import setup_texture_planes
 from vgxsim.state.codes import (
@@ -159,6 +165,13 @@ class CommandBatch:
         their set-up records into band order so that each band reads its own
         front to back (kernels/render.py gather_band_records); on by default, a
         switch that changes nothing drawn.
+    lean_kernel : bool
+        Draw a batch whose triangles' states all take the span loops, without
+        points or lines, with ``render_bands_lean``: the band kernel compiled
+        without the general per-fragment path, the texture stage and the slow
+        colour span (kernels/render.py lean_fits), so a cold start compiles only
+        those kernels the first image runs; on by default, a switch that changes
+        nothing drawn.
     scatter_bins : bool
         With ``band_records``: the primitives are binned and their records written
         into band order in one pass in drawing order, one sequential write stream
@@ -197,6 +210,7 @@ class CommandBatch:
     scatter_bins = True
     prefetch_planes = True
     borrow_arrays = True
+    lean_kernel = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -737,8 +751,14 @@ class CommandBatch:
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
+        kernel = render_bands
+        if self.lean_kernel:
+            used = np.zeros(len(derived), bool)  # the states triangles use
+            used[self.t_state[:self.ntris]] = True
+            if lean_fits(derived[used], self.nruns, self.edge_mode, self.general_only):
+                kernel = render_bands_lean
         if nthreads == 1:
-            render_bands(0, 1, *args)
+            kernel(0, 1, *args)
         else:
             # The kernel releases the GIL: plain threads give band parallelism without
             # Numba's parallel=True compile cost (a large part of cold start).
@@ -748,7 +768,7 @@ class CommandBatch:
             # while the other thread idles (bands are disjoint: order changes nothing).
             pool = threads.pool(nthreads)
             order = np.argsort(-np.diff(starts), kind="stable").tolist()
-            futures = [pool.submit(render_bands, b, nbands, *args) for b in order]
+            futures = [pool.submit(kernel, b, nbands, *args) for b in order]
             for f in futures:
                 f.result()
         self.counters += work.sum(axis=0)

@@ -3,7 +3,8 @@
 With an empty Numba cache the first image waits for every kernel it needs to
 compile, one after another (Numba compiles under one global lock, so threads do
 not help).  The kernels fall into two trees that share nothing: the band kernel
-(``render_bands`` and everything it calls) and the geometry kernels (transform,
+(``render_bands_lean``, the copy a first image without points, lines or
+general-path states uses, and everything it calls) and the geometry kernels (transform,
 clip, project, set-up, the command-stream decoder, edge adjacency and Newell
 normals of shadow-casting meshes).  When the band kernel's cache entry is missing,
 the first :class:`~vgxsim.batch.CommandBatch` of a process starts one helper
@@ -64,11 +65,11 @@ polyhedron_from_polygons([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
 def _band_kernel_cached() -> bool | None:
     """Whether the band kernel has a cache index on disk (None: cannot tell)."""
     try:
-        from vgxsim.kernels.render import render_bands
+        from vgxsim.kernels.render import render_bands_lean
 
-        if render_bands.signatures:
+        if render_bands_lean.signatures:
             return True
-        return os.path.exists(render_bands._cache._cache_file._index_path)
+        return os.path.exists(render_bands_lean._cache._cache_file._index_path)
     except (AttributeError, OSError):
         return None
 
@@ -103,7 +104,7 @@ def prepare(batch_type) -> None:
 
         batch = batch_type(Framebuffer(PlaneConfig(8, 8, stencil=8)))
         batch.add_clear(7, 0, 0, 0, RasterState(scissor=(0, 7, 0, 7)))
-        batch.flush()  # compiles render_bands and the raster kernels it calls
+        batch.flush()  # compiles render_bands_lean and the raster kernels it calls
     finally:
         try:
             helper.wait(timeout=600)

@@ -222,6 +222,34 @@ def test_flush_rows_keeps_rows_with_vertices_and_counts_from_the_first():
     assert tri_rows[:, 1].tolist() == [0, 4]
 
 
+def test_flush_rows_copies_every_column():
+    """Random rows: ``rows`` and ``tri_rows`` are the kept rows whole, as numpy's
+    masked selection gives them (vertex columns of ``tri_rows`` shifted by vlo)."""
+    from vgxsim.kernels.front import flush_rows
+    from vgxsim.stream.opcodes import CLEAR_KIND, P_KIND, P_STATE, P_V0, P_V1, POLYGON
+
+    rng = np.random.default_rng(12)
+    for _ in range(20):
+        n = int(rng.integers(1, 30))
+        prims = rng.integers(-1000, 1000, (n, len(_row(POLYGON, 0, 0, 0)))).astype(np.int64)
+        prims[:, P_KIND] = rng.choice([CLEAR_KIND, POLYGON], n)
+        v0 = np.cumsum(rng.integers(0, 3, n))
+        prims[:, P_V0] = v0
+        prims[:, P_V1] = v0 + rng.integers(0, 3, n)
+        prims[:, P_STATE] = rng.integers(0, 4, n)
+        rows, tri_rows, rec_of, *_ = flush_rows(prims, np.arange(4, dtype=np.int64))
+        clear = prims[:, P_KIND] == CLEAR_KIND
+        keep = clear | (prims[:, P_V1] > prims[:, P_V0])
+        np.testing.assert_array_equal(rows, prims[keep])
+        want = prims[~clear & keep].copy()
+        if len(want):
+            lo = want[0, P_V0]
+            want[:, P_V0] -= lo
+            want[:, P_V1] -= lo
+        np.testing.assert_array_equal(tri_rows, want)
+        np.testing.assert_array_equal(rec_of, want[:, P_STATE])
+
+
 def test_flush_segments_cuts_at_clears_and_classes():
     """Rows: clear, two of class 0 (rasters 0 and 1), one of class 1, clear, one of
     class 1; clipped triangles 0..5 from assembled triangles whose rows are known,

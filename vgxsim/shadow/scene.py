@@ -36,7 +36,6 @@ when the scene is built), so the drawing code needs no per-object matrices.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -44,10 +43,11 @@ import numpy as np
 
 from vgxsim import GL
 from vgxsim.geometry import transform
+from vgxsim.shadow.rigid import box_mesh, object_transform
 
-# trimesh (and networkx, its graph engine) is imported by the functions that build
-# meshes with it (boxes, grid boxes): importing it costs more than the rest of a
-# warm start, and a program that only draws, or a .glo scene, never needs it.
+# trimesh (and networkx, its graph engine) is imported only where a caller hands in
+# a trimesh mesh: importing it costs more than the rest of a warm start, and the
+# boxes of the default scene are built in plain numpy (vgxsim/shadow/rigid.py).
 if TYPE_CHECKING:
     import trimesh
 
@@ -474,25 +474,10 @@ def polyhedron_from_trimesh(mesh: trimesh.Trimesh, name: str,
     return polyhedron_from_polygons(mesh.vertices, loops, name, material, casts)
 
 
-def object_transform(position: Vec3 = (0.0, 0.0, 0.0), rotate: Vec3 = (0.0, 0.0, 0.0),
-                     scale: Vec3 = (1.0, 1.0, 1.0)) -> np.ndarray:
-    """README: "the transformations are always done in the order Scale, Rotate,
-    Position, with Rotation done in the order z, y, x" -- the gl sequence
-    translate; rotate x; rotate y; rotate z; scale.  Returned as a column-vector
-    4x4 matrix (trimesh convention); rotation angles in degrees.
-    """
-    from trimesh import transformations as tr
-
-    m = tr.translation_matrix(position)
-    for ang, axis in zip(rotate, np.eye(3), strict=True):  # x, then y, then z
-        m = m @ tr.rotation_matrix(math.radians(ang), axis)
-    return m @ np.diag([*scale, 1.0])
-
-
 def make_box(name: str, extents: Vec3, *, position: Vec3 = (0.0, 0.0, 0.0),
              rotate: Vec3 = (0.0, 0.0, 0.0), material: SurfaceMaterial | None = None,
              casts: bool = True) -> Polyhedron:
-    """A box (``trimesh.creation.box``) scaled, rotated (z, y, x) and positioned.
+    """A box (:func:`vgxsim.shadow.rigid.box_mesh`) rotated (z, y, x) and positioned.
 
     Parameters
     ----------
@@ -510,11 +495,8 @@ def make_box(name: str, extents: Vec3, *, position: Vec3 = (0.0, 0.0, 0.0),
     -------
     Polyhedron
     """
-    import trimesh.creation
-
-    mesh = trimesh.creation.box(extents=extents)
-    mesh.apply_transform(object_transform(position, rotate))
-    return polyhedron_from_trimesh(mesh, name, material, casts)
+    verts, quads = box_mesh(extents, object_transform(position, rotate))
+    return polyhedron_from_polygons(verts, quads, name, material, casts)
 
 
 def make_grid_box(name: str, extents: Vec3, divisions: tuple[int, int, int], *,
@@ -525,7 +507,7 @@ def make_grid_box(name: str, extents: Vec3, divisions: tuple[int, int, int], *,
 
     IRIS GL lights per vertex, so a large polygon lit by a near local light is
     shaded only from its corners; the floor is therefore a subdivided box.  The mesh
-    is checked with trimesh (watertight, consistent winding, outward volume).
+    is checked to be closed, consistently wound and of positive volume.
 
     Parameters
     ----------
@@ -568,13 +550,19 @@ def make_grid_box(name: str, extents: Vec3, divisions: tuple[int, int, int], *,
     polys = inverse.reshape(-1)[np.concatenate(quads)]
     m = object_transform(position, rotate)
     verts = uniq @ m[:3, :3].T + m[:3, 3]
-    import trimesh
-
-    tri = trimesh.Trimesh(verts, np.concatenate([polys[:, [0, 1, 2]], polys[:, [0, 2, 3]]]),
-                          process=False)
-    if not (tri.is_watertight and tri.is_winding_consistent and tri.volume > 0):
+    # Winding and manifold edges are checked by polyhedron_from_polygons (MeshError).
+    poly = polyhedron_from_polygons(verts, polys, name, material, casts)
+    if not (poly.is_closed and _volume(poly) > 0):
         raise ValueError(f"{name}: grid box is not a closed outward mesh")
-    return polyhedron_from_polygons(verts, polys, name, material, casts)
+    return poly
+
+
+def _volume(poly: Polyhedron) -> float:
+    """Signed volume of a closed mesh (divergence theorem: one tetrahedron from the
+    origin per triangle); positive when the triangles wind counter-clockwise from
+    outside."""
+    a, b, c = (poly.vertices[poly.triangles[:, i]] for i in range(3))
+    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
 # --------------------------------------------------------------------------------------
