@@ -360,26 +360,11 @@ def _draw_to(ctx, p) -> None:
     """One segment from the current graphics position, continuing the pattern, in
     the current colour at both ends (and normal, lit as the last colour/normal call
     says), transformed by the matrix current now."""
-    st = ctx.stream
-    ops = st.ops
-    if len(ops) > MAX_STREAM_OPS:  # (spliced parts are bounded in CommandStream.splice)
-        drain(ctx)
-    snap = ctx.raster._snapshot  # _draw.same_state, inlined (one call less)
-    if not (snap is not None and snap is st.raster and ctx.matrices._mvp is st.mvp
-            and ctx.depth_range is st.depth and ctx.lighting_serial == st.lighting_serial
-            and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
-        _restate_changed(ctx, st)
-    if (ctx.colour is not st.colour or ctx.normal is not st.normal
-            or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
-        sync(ctx, st)
     if ctx.ls_restart:
-        ops.extend(_RESTART_OPS)
         ctx.ls_restart = False
+        _record_closed(ctx, _RESTART_OPS, ctx.gpos + p)
     else:
-        ops.extend(_SEG_OPS)
-    fl = st.fl
-    fl.extend(ctx.gpos)
-    fl.extend(p)
+        _record_closed(ctx, _SEG_OPS, ctx.gpos + p)
     ctx.gpos = p
 
 
@@ -408,47 +393,15 @@ def _make_move(base: str, dim: int, suffix: str):
     # of 32 bits (the i/s forms, as float(v), coords' value), outside bgn*/end*;
     # anything else -- one tuple, a keyword, a wrong count or type, recording --
     # takes the general path, which validates and raises as it always did.
+    step = _draw_to if drawing else _move_to
+
     def call2(x=_NO, y=_NO, /, *more, **kw) -> None:
         ctx = session.imm
         if (ctx is None or kw or more or ctx.prim is not None
                 or type(x) is not float or type(y) is not float
                 or x - x != 0.0 or y - y != 0.0):  # (x - x: NaN for NaN and inf)
             return general(*given((x, y), more), **kw)
-        if drawing:
-            _draw_to(ctx, (x, y, 0.0, 1.0))
-        else:
-            ctx.gpos = (x, y, 0.0, 1.0)
-            if ctx.resetls:
-                ctx.ls_restart = True
-
-    def draw2f(x=_NO, y=_NO, /, *more, **kw) -> None:
-        # draw2/move2's call2 for draw2, with _draw_to inlined (one call less).
-        ctx = session.imm
-        if (ctx is None or kw or more or ctx.prim is not None
-                or type(x) is not float or type(y) is not float
-                or x - x != 0.0 or y - y != 0.0):
-            return general(*given((x, y), more), **kw)
-        st = ctx.stream
-        ops = st.ops
-        if len(ops) > MAX_STREAM_OPS:
-            return _draw_to(ctx, (x, y, 0.0, 1.0))
-        snap = ctx.raster._snapshot
-        if not (snap is st.raster and snap is not None and ctx.matrices._mvp is st.mvp
-                and ctx.depth_range is st.depth and ctx.lighting_serial == st.lighting_serial
-                and ctx.concave is st.concave and ctx.vertex_serial == st.vertex_serial):
-            _restate_changed(ctx, st)
-        if (ctx.colour is not st.colour or ctx.normal is not st.normal
-                or ctx.last_sent is not st.sent or ctx.lmcolor_set is not st.lmcolor_set):
-            sync(ctx, st)
-        if ctx.ls_restart:
-            ops.extend(_RESTART_OPS)
-            ctx.ls_restart = False
-        else:
-            ops.extend(_SEG_OPS)
-        fl = st.fl
-        fl.extend(ctx.gpos)
-        ctx.gpos = p = (x, y, 0.0, 1.0)
-        fl.extend(p)
+        step(ctx, (x, y, 0.0, 1.0))
 
     def call3(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
         ctx = session.imm
@@ -456,12 +409,7 @@ def _make_move(base: str, dim: int, suffix: str):
                 or type(x) is not float or type(y) is not float or type(z) is not float
                 or x - x != 0.0 or y - y != 0.0 or z - z != 0.0):
             return general(*given((x, y, z), more), **kw)
-        if drawing:
-            _draw_to(ctx, (x, y, z, 1.0))
-        else:
-            ctx.gpos = (x, y, z, 1.0)
-            if ctx.resetls:
-                ctx.ls_restart = True
+        step(ctx, (x, y, z, 1.0))
 
     def call2i(x=_NO, y=_NO, /, *more, **kw) -> None:
         ctx = session.imm
@@ -469,12 +417,7 @@ def _make_move(base: str, dim: int, suffix: str):
                 or type(x) is not int or type(y) is not int
                 or not (INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX)):
             return general(*given((x, y), more), **kw)
-        if drawing:
-            _draw_to(ctx, (float(x), float(y), 0.0, 1.0))
-        else:
-            ctx.gpos = (float(x), float(y), 0.0, 1.0)
-            if ctx.resetls:
-                ctx.ls_restart = True
+        step(ctx, (float(x), float(y), 0.0, 1.0))
 
     def call3i(x=_NO, y=_NO, z=_NO, /, *more, **kw) -> None:
         ctx = session.imm
@@ -483,17 +426,12 @@ def _make_move(base: str, dim: int, suffix: str):
                 or not (INT_MIN <= x <= INT_MAX and INT_MIN <= y <= INT_MAX
                         and INT_MIN <= z <= INT_MAX)):
             return general(*given((x, y, z), more), **kw)
-        if drawing:
-            _draw_to(ctx, (float(x), float(y), float(z), 1.0))
-        else:
-            ctx.gpos = (float(x), float(y), float(z), 1.0)
-            if ctx.resetls:
-                ctx.ls_restart = True
+        step(ctx, (float(x), float(y), float(z), 1.0))
 
     if relative:
         call = general
     else:
-        call = {(2, False): draw2f if drawing else call2, (3, False): call3,
+        call = {(2, False): call2, (3, False): call3,
                 (2, True): call2i, (3, True): call3i}[dim, integer]
     call.__name__ = call.__qualname__ = name
     if drawing:
