@@ -104,9 +104,6 @@ def _position(ctx, x0: float, y0: float, z0: float, w0: float) -> tuple:
     return True, math.floor(xw + 0.5), math.floor(yw + 0.5), int(zi)
 
 
-_floor = math.floor  # (a constant: one global look-up in cmov's valid path)
-
-
 def _set_cpos(ctx, x: float, y: float, z: float) -> None:
     valid, px, py, pz = _position(ctx, x, y, z, 1.0)
     ctx.cpos_valid = valid
@@ -147,29 +144,7 @@ def _make_cmov(dim: int, suffix: str):
         elif not (type(x) is float and type(y) is float and type(z) is float
                   and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
             return general(*given((x, y, z) if dim == 3 else (x, y), more))
-        # _position(ctx, x, y, z, 1.0), inlined (w = 1.0: w * m is m).
-        mats = ctx.matrices
-        memo = mats._flat
-        mvp = mats._mvp
-        m = memo[1] if memo is not None and mvp is not None and memo[0] is mvp else (
-            mats.mvp_flat())
-        cx = ((x * m[0] + y * m[4]) + z * m[8]) + m[12]
-        cy = ((x * m[1] + y * m[5]) + z * m[9]) + m[13]
-        cz = ((x * m[2] + y * m[6]) + z * m[10]) + m[14]
-        cw = ((x * m[3] + y * m[7]) + z * m[11]) + m[15]
-        if not (cw > 0 and -cw <= cx <= cw and -cw <= cy <= cw and -cw <= cz <= cw):
-            ctx.cpos_valid = False
-            return
-        l, r, b, t = ctx.raster.viewport
-        near, far = ctx.depth_range
-        floor = _floor
-        zi = floor(near + (cz / cw + 1.0) * (far - near) / 2.0 + 0.5)
-        lo, hi = (floor(near + 0.5), floor(far + 0.5)) if near <= far else (
-            floor(far + 0.5), floor(near + 0.5))
-        ctx.cpos_valid = True
-        ctx.cpos = (floor((l - 0.5) + (cx / cw + 1.0) * (r - l + 1) / 2.0 + 0.5),
-                    floor((b - 0.5) + (cy / cw + 1.0) * (t - b + 1) / 2.0 + 0.5))
-        ctx.cpos_z = lo if zi < lo else hi if zi > hi else zi  # (min(max(...)))
+        _set_cpos(ctx, x, y, z)
 
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): set the current character position to this "
