@@ -116,17 +116,21 @@ class MatrixState:
                 else:
                     self._store(op[1].reshape(4, 4))  # (load_owned, settled already)
 
+    def _defer(self, op: tuple) -> None:
+        """Note a product (kind, *arguments) for :meth:`_settle`, in call order."""
+        if self._pending is None:
+            self._pending = [op]
+        else:
+            self._pending.append(op)
+        self._mvp = None
+        self._mv_inv_t = None
+
     def translate(self, x: float, y: float, z: float) -> None:
         """``mult(translation(x, y, z))``, deferred (see the module docstring)."""
         if not DEFER_TRANSLATE or self.pick is not None:
             self.mult(_translation(x, y, z))
             return
-        if self._pending is None:
-            self._pending = [(_TRANSLATE, x, y, z)]
-        else:
-            self._pending.append((_TRANSLATE, x, y, z))
-        self._mvp = None
-        self._mv_inv_t = None
+        self._defer((_TRANSLATE, x, y, z))
 
     def rotate(self, degrees: float, axis: str) -> None:
         """:meth:`rotate_axis`, deferred with the translations (:data:`DEFER_PRODUCTS`;
@@ -134,12 +138,7 @@ class MatrixState:
         if not DEFER_PRODUCTS or self.pick is not None:
             self.rotate_axis(degrees, axis)
             return
-        if self._pending is None:
-            self._pending = [(_ROTATE, degrees, axis)]
-        else:
-            self._pending.append((_ROTATE, degrees, axis))
-        self._mvp = None
-        self._mv_inv_t = None
+        self._defer((_ROTATE, degrees, axis))
 
     def mult_deferred(self, m: np.ndarray) -> None:
         """:meth:`mult_by` of a float64 array of 16 (or (4, 4)) no one else holds
@@ -147,12 +146,7 @@ class MatrixState:
         if not DEFER_PRODUCTS or self.pick is not None:
             self.mult_by(m.reshape(4, 4))
             return
-        if self._pending is None:
-            self._pending = [(_MULT, m)]
-        else:
-            self._pending.append((_MULT, m))
-        self._mvp = None
-        self._mv_inv_t = None
+        self._defer((_MULT, m))
 
     def load_deferred(self, m: np.ndarray) -> None:
         """:meth:`load_owned` (loadmatrix's valid path), deferred as :meth:`rotate`:
@@ -169,12 +163,7 @@ class MatrixState:
         if not DEFER_PRODUCTS or self.pick is not None:
             self.scale_by(x, y, z)
             return
-        if self._pending is None:
-            self._pending = [(_SCALE, x, y, z)]
-        else:
-            self._pending.append((_SCALE, x, y, z))
-        self._mvp = None
-        self._mv_inv_t = None
+        self._defer((_SCALE, x, y, z))
 
     # current matrix of the active mode
     def current(self) -> np.ndarray:
