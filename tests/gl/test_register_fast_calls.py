@@ -1,5 +1,5 @@
 """zbuffer, zfunction, swritemask, backface, frontface, shademodel and linewidth's
-valid paths (gl/_raster.py _register_call, FAST_CALLS) store the register values
+valid paths (gl/_raster.py register_call, FAST_CALLS) store the register values
 their general paths store (ints and GL tokens), so the raster snapshot keys and the
 planes are the same with the switch on and off; values they do not take reach the
 general path, which raises the GLError naming the call."""

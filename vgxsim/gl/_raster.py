@@ -70,14 +70,16 @@ def _in_range(name: str, args: tuple, what: str, v, lo: int, hi: int, why: str =
     return iv
 
 
-def _register_call(attr: str, lo: int = INT_MIN, hi: int = INT_MAX, *, boolean: bool = False,
-                   wrap: bool = False):
+def register_call(attr: str, lo: int = INT_MIN, hi: int = INT_MAX, *, boolean: bool = False,
+                  wrap: bool = False, record: bool = False, general_when=None):
     """Give a one-int register call's validated body a valid path (FAST_CALLS), as
     zwritemask's: an int (or GL token) in ``lo..hi`` is stored in ``RasterRegisters.<attr>`` --
     ``v != 0`` with ``boolean``; with ``wrap`` any int, reduced modulo 2**32 -- and the
     snapshot marked dirty, which is what the body's ``regs.set(attr=...)`` does for
     such a value; anything else (recording, keywords, a wrong count or type, a value
-    out of range) runs the body, which validates and raises as before."""
+    out of range, or a window for which ``general_when(ctx)`` is true) runs the body,
+    which validates and raises as before.  ``record``: display objects record the
+    call (gl_function's ``record``)."""
 
     def deco(body):
         name = body.__name__
@@ -94,7 +96,8 @@ def _register_call(attr: str, lo: int = INT_MIN, hi: int = INT_MAX, *, boolean: 
                 return general(*given((v,), more), **kw)
             if t is Token:
                 v = int(v)  # (a GL token: stored as the plain int as_int gives)
-            if not (wrap or lo <= v <= hi):
+            if not (wrap or lo <= v <= hi) or (general_when is not None
+                                               and general_when(ctx)):
                 return general(v, *more)
             regs = ctx.raster
             setattr(regs, attr, v & _U32 if wrap else (v != 0) if boolean else v)
@@ -102,20 +105,20 @@ def _register_call(attr: str, lo: int = INT_MIN, hi: int = INT_MAX, *, boolean: 
 
         call.__name__ = call.__qualname__ = name
         call.__doc__ = body.__doc__
-        return gl_function(binds=(1, 1, ("int",)))(call)
+        return gl_function(record=record, binds=(1, 1, ("int",)))(call)
 
     return deco
 
 
 # -- z-buffer ----------------------------------------------------------------------
-@_register_call("zbuffer", boolean=True)
+@register_call("zbuffer", boolean=True)
 def zbuffer(b: int) -> None:
     """Enable (any non-zero) or disable the z test and z writes (zbuffer(3G))."""
     ctx = current("zbuffer", (b,))
     ctx.raster.set(zbuffer=as_int("zbuffer", (b,), "b", b) != 0)
 
 
-@_register_call("zfunc", 0, 7)
+@register_call("zfunc", 0, 7)
 def zfunction(func: int) -> None:
     """Comparison of incoming against stored z, ZF_NEVER..ZF_ALWAYS; ZF_LEQUAL is the
     default (zfunction(3G))."""
@@ -330,7 +333,7 @@ def sclear(sval: int) -> None:
     ctx.clear_planes(CLEAR_STENCIL, stencil=_u32("sclear", (sval,), "sval", sval))
 
 
-@_register_call("swritemask", wrap=True)
+@register_call("swritemask", wrap=True)
 def swritemask(mask: int) -> None:
     """Which stencil bits may change; bits above the configured planes are ignored
     (swritemask(3G))."""
@@ -491,14 +494,14 @@ def logicop(opcode: int) -> None:
 
 
 # -- faces and shading -----------------------------------------------------------------
-@_register_call("backface", boolean=True)
+@register_call("backface", boolean=True)
 def backface(b: int) -> None:
     """Cull polygons whose window-space vertices run clockwise (backface(3G))."""
     ctx = current("backface", (b,))
     ctx.raster.set(backface=as_int("backface", (b,), "b", b) != 0)
 
 
-@_register_call("frontface", boolean=True)
+@register_call("frontface", boolean=True)
 def frontface(b: int) -> None:
     """Cull counter-clockwise (front-facing) polygons (frontface(3G))."""
     ctx = current("frontface", (b,))
@@ -511,7 +514,7 @@ def getbackface() -> int:
     return int(bool(current("getbackface").raster.backface))
 
 
-@_register_call("shademodel", int(GL.FLAT), int(GL.GOURAUD))
+@register_call("shademodel", int(GL.FLAT), int(GL.GOURAUD))
 def shademodel(mode: int) -> None:
     """FLAT (last vertex's colour) or GOURAUD, the default (shademodel(3G))."""
     args = (mode,)
@@ -530,7 +533,7 @@ def getsm() -> int:
 
 
 # -- lines and points ----------------------------------------------------------------------
-@_register_call("linewidth", 1, _SHORT_MAX)
+@register_call("linewidth", 1, _SHORT_MAX)
 def linewidth(n: int) -> None:
     """Line width in pixels, at least 1 (linewidth(3G))."""
     ctx = current("linewidth", (n,))

@@ -51,13 +51,9 @@ from vgxsim import DEVICE, GL
 from vgxsim.pipeline import layers
 from vgxsim.pipeline.context import Context, replace_config
 from vgxsim.state.planes import MAX_STENCIL_PLANES
-from vgxsim.tokens import Token
 
 from . import _events
 from ._core import (
-    _NO,
-    INT_MAX,
-    INT_MIN,
     GLTypeError,
     GLValueError,
     Window,
@@ -65,14 +61,13 @@ from ._core import (
     check_token,
     current,
     describe,
-    given,
     gl_function,
-    record_or_refuse,
     session,
     window_of,
 )
 from ._drawmode import set_draw_buffer
 from ._matrix import load_window_projection
+from ._raster import register_call
 
 __all__ = [
     "winopen", "winclose", "winset", "winget", "wintitle", "prefsize", "prefposition",
@@ -640,33 +635,14 @@ def subpixel(b: int) -> None:
     current("subpixel", args).raster.set(subpixel=bool(v))
 
 
-def _buffer_call(attr: str, body):
-    """frontbuffer/backbuffer with a valid path (FAST_CALLS): an int (or GL token) of
-    32 bits outside zdraw mode is stored as ``v != 0`` and the snapshot marked dirty,
-    which is what set_draw_buffer's ``raster.set`` does then; anything else (zdraw,
-    recording, a keyword, a wrong count or type) runs the body, which validates and
-    raises as before."""
-
-    def general(*args, **kwargs) -> None:
-        if kwargs or session.recording is not None or len(args) != 1:
-            return record_or_refuse(call, args, kwargs)
-        body(*args)
-
-    def call(b=_NO, /, *more, **kw) -> None:
-        ctx = session.imm
-        if (ctx is None or kw or more or (type(b) is not int and type(b) is not Token)
-                or not INT_MIN <= b <= INT_MAX or ctx.zdraw_batch is not None):
-            return general(*given((b,), more), **kw)
-        regs = ctx.raster
-        setattr(regs, attr, b != 0)
-        regs._snapshot = None
-
-    call.__name__ = call.__qualname__ = attr
-    call.__doc__ = body.__doc__
-    return gl_function(record=True, binds=(1, 1, ("int",)))(call)
+def _in_zdraw(ctx) -> bool:
+    """zdraw(3G) mode: a change of buffers is checked against the z-buffer drawing
+    and the queue drawn first (set_draw_buffer), the validated body's business."""
+    return ctx.zdraw_batch is not None
 
 
-def _frontbuffer(b: int) -> None:
+@register_call("frontbuffer", boolean=True, record=True, general_when=_in_zdraw)
+def frontbuffer(b: int) -> None:
     """frontbuffer(b): draw into the front buffer too (frontbuffer(3G)); only
     double-buffered windows have a choice."""
     args = (b,)
@@ -674,16 +650,13 @@ def _frontbuffer(b: int) -> None:
     set_draw_buffer("frontbuffer", args, current("frontbuffer", args), frontbuffer=bool(v))
 
 
-def _backbuffer(b: int) -> None:
+@register_call("backbuffer", boolean=True, record=True, general_when=_in_zdraw)
+def backbuffer(b: int) -> None:
     """backbuffer(b): draw into the back buffer (backbuffer(3G)); the default when
     double-buffered."""
     args = (b,)
     v = as_int("backbuffer", args, "b", b)
     set_draw_buffer("backbuffer", args, current("backbuffer", args), backbuffer=bool(v))
-
-
-frontbuffer = _buffer_call("frontbuffer", _frontbuffer)
-backbuffer = _buffer_call("backbuffer", _backbuffer)
 
 
 _SOURCES = (GL.SRC_AUTO, GL.SRC_FRONT, GL.SRC_BACK, GL.SRC_ZBUFFER, GL.SRC_PUP,
