@@ -229,7 +229,7 @@ def draw_polyline(batch, rs: RasterState, view: Viewing, obj, rgba, segs,
     the snapped (and clipped) endpoints (docs/numeric_model.md s. 5).  With
     ``backup`` (lsbackup(3G)) the polyline's last two pixels are drawn whatever the
     pattern says.  ``restarts`` (S,) bool, one per segment of ``segs`` (draw(3G)
-    segments, without ``backup``): the pattern is at 0 where one is set -- after it
+    segments): the pattern is at 0 where one is set -- after it
     the count runs on as before -- whether or not that segment survives the clip (a
     move under resetls(TRUE) put the position there; ``restarts[0]`` is taken to be
     the caller's, in ``pattern_offset``).
@@ -239,47 +239,40 @@ def draw_polyline(batch, rs: RasterState, view: Viewing, obj, rgba, segs,
     int
         Line-style position after the last segment (where the next draw continues).
     """
-    if restarts is not None and restarts[1:].any():
-        return _draw_restarting(batch, rs, view, obj, rgba, segs, int(pattern_offset),
-                                np.asarray(restarts, bool))
+    offset = int(pattern_offset)
+    later = None  # per input segment: a restart after the first one
+    if restarts is not None:
+        later = np.asarray(restarts, bool).copy()
+        later[0] = False  # (the first segment's restart is the caller's offset)
+        if not later.any():
+            later = None
     seg = _clipped_segments(rs, view, obj, rgba, segs)
     if seg is None:
-        return int(pattern_offset)
+        return offset if later is None else 0
     steps = line_steps(seg[0], seg[1])
-    ends = int(pattern_offset) + np.cumsum(steps)
+    starts = np.cumsum(steps) - steps  # steps before each surviving segment
+    trailing = False
+    if later is None:
+        starts += offset
+    else:
+        # Each run of segments from one restart to the next counts from 0 (the first
+        # run from the offset), each segment starting where the surviving one before
+        # it in its run ended: what drawing the runs one after the other gives.
+        run = np.cumsum(later)  # per input segment: its run (0 before any restart)
+        runs = run[seg[-1]]  # the run of each surviving segment (non-decreasing)
+        head = np.ones(runs.shape[0], bool)
+        head[1:] = runs[1:] != runs[:-1]
+        starts -= starts[head][np.cumsum(head) - 1]  # from its run's first survivor
+        starts += np.where(runs == 0, offset, 0)
+        trailing = run[-1] > runs[-1]  # a restart after the last segment drawn
+    end = int(starts[-1] + steps[-1])
     always = NO_BACKUP
     if backup:
-        # The last pixel drawn sits at position ends[-1] with closed lines (the end
-        # vertex is drawn) and ends[-1] - 1 with half-open ones.
-        always = int(ends[-1]) - (1 if not rs.subpixel else 2)
-    _queue_segments(batch, rs, seg, ends - steps, None, always)
-    return int(ends[-1])
-
-
-def _draw_restarting(batch, rs: RasterState, view: Viewing, obj, rgba, segs,
-                     offset: int, restarts: np.ndarray) -> int:
-    """:func:`draw_polyline` of segments some of which restart the pattern: the run
-    of segments from one restart to the next counts from 0 (the first run from
-    ``offset``), each segment starting where the surviving one before it in its run
-    ended -- what drawing the runs one after the other gives."""
-    later = restarts.copy()
-    later[0] = False  # (the first segment's restart is the caller's offset)
-    run = np.cumsum(later)  # per input segment: its run (0 before any restart)
-    seg = _clipped_segments(rs, view, obj, rgba, segs)
-    if seg is None:
-        return 0 if run[-1] > 0 else offset
-    steps = line_steps(seg[0], seg[1])
-    runs = run[seg[-1]]  # the run of each surviving segment (non-decreasing)
-    before = np.cumsum(steps) - steps  # steps before each surviving segment
-    head = np.ones(runs.shape[0], bool)
-    head[1:] = runs[1:] != runs[:-1]
-    # Steps before the first surviving segment of each one's run, per segment.
-    base = before[head][np.cumsum(head) - 1]
-    starts = before - base + np.where(runs == 0, offset, 0)
-    _queue_segments(batch, rs, seg, starts, None, NO_BACKUP)
-    if run[-1] > runs[-1]:
-        return 0  # a restart after the last segment drawn, nothing since
-    return int(starts[-1] + steps[-1])
+        # The last pixel drawn sits at position end with closed lines (the end
+        # vertex is drawn) and end - 1 with half-open ones.
+        always = end - (1 if not rs.subpixel else 2)
+    _queue_segments(batch, rs, seg, starts, None, always)
+    return 0 if trailing else end
 
 
 def _clipped_segments(rs: RasterState, view: Viewing, obj, rgba, segs):
