@@ -126,6 +126,27 @@ def test_a_matrix_change_is_seen_at_the_next_cmov(ctx):
     assert gl.getcpos() == (8, 6)
 
 
+def test_viewport_and_depth_changes_are_seen_at_the_next_cmov(ctx):
+    """cmov's window map (gl/_text.py _window_map) is keyed by the mvp, viewport and
+    depth-range objects: a change of any one between two cmovs of the same point
+    moves the position as the oracle says."""
+    gl.mmode(GL.MVIEWING)
+    gl.ortho(-4.0, 4.0, -3.0, 3.0, -5.0, 5.0)
+    p = (1.25, -0.75, 0.5)
+    seen = []
+    for change in (lambda: None, lambda: gl.viewport(3, W - 7, 2, H - 4),
+                   lambda: gl.lsetdepth(-0x1000, 0x7000),
+                   lambda: gl.lsetdepth(0x7000, -0x1000),  # near above far
+                   lambda: gl.translate(0.5, 0.25, 0.0), lambda: gl.viewport(0, W - 1, 0, H - 1)):
+        change()
+        gl.cmov(*p)
+        valid, x, y, z = oracle(ctx, p + (1.0,))
+        assert valid and ctx.cpos_valid
+        assert (ctx.cpos, ctx.cpos_z) == ((x, y), z)
+        seen.append((ctx.cpos, ctx.cpos_z))
+    assert len(set(seen)) == len(seen)  # each change moved the point
+
+
 @pytest.mark.parametrize("call, args, error", [
     ("cmov2", (float("nan"), 1.0), GLValueError),
     ("cmov", (1.0, 2.0, float("inf")), GLValueError),

@@ -31,6 +31,7 @@ defined in the current raster font", charstr(3G)), so ``strwidth`` agrees with w
 from __future__ import annotations
 
 import math
+from math import floor
 
 import numpy as np
 
@@ -104,6 +105,30 @@ def _position(ctx, x0: float, y0: float, z0: float, w0: float) -> tuple:
     return True, math.floor(xw + 0.5), math.floor(yw + 0.5), int(zi)
 
 
+def _window_map(ctx) -> tuple:
+    """What cmov's valid path reads of the window's transform, made once per change
+    (the mvp, the viewport tuple and the depth-range tuple are replaced, never
+    mutated, on change, and the map holds them, so their identity is its key):
+    ``(mvp, viewport, depth_range, m0 .. m15, l - 0.5, float(r - l + 1), b - 0.5,
+    float(t - b + 1), float(near), float(far - near), zlo, zhi)``, the mvp's entries
+    as :meth:`MatrixState.mvp_flat` gives them and the terms of :func:`_position`'s
+    viewport and depth mapping that do not depend on the point, each the value
+    Python's int-float arithmetic there converts to (``zlo``, ``zhi``: the depth
+    clamp, ``floor(min/max(near, far) + 0.5)``)."""
+    mats = ctx.matrices
+    mvp = mats.mvp()
+    vp = ctx.raster.viewport
+    dr = ctx.depth_range
+    l, r, b, t = vp
+    near, far = dr
+    ctx.cpos_map = memo = (
+        (mvp, vp, dr) + tuple(mats.mvp_flat())
+        + (l - 0.5, float(r - l + 1), b - 0.5, float(t - b + 1), float(near),
+           float(far - near), math.floor(min(near, far) + 0.5),
+           math.floor(max(near, far) + 0.5)))
+    return memo
+
+
 def _set_cpos(ctx, x: float, y: float, z: float) -> None:
     valid, px, py, pz = _position(ctx, x, y, z, 1.0)
     ctx.cpos_valid = valid
@@ -144,7 +169,28 @@ def _make_cmov(dim: int, suffix: str):
         elif not (type(x) is float and type(y) is float and type(z) is float
                   and x - x == 0.0 and y - y == 0.0 and z - z == 0.0):
             return general(*given((x, y, z) if dim == 3 else (x, y), more))
-        _set_cpos(ctx, x, y, z)
+        # _set_cpos(ctx, x, y, z) inlined on the window map (cmov2's cost was the
+        # calls and the per-point int-float conversions): the same operations in
+        # the same order (the point's w is 1.0, and 1.0 * m is m exactly).
+        memo = ctx.cpos_map
+        mvp = ctx.matrices._mvp
+        if (memo is None or mvp is not memo[0] or ctx.raster.viewport is not memo[1]
+                or ctx.depth_range is not memo[2]):
+            memo = _window_map(ctx)
+        (_, _, _, m0, m1, m2, m3, m4, m5, m6, m7, m8, m9, m10, m11, m12, m13, m14, m15,
+         xo, xs, yo, ys, zo, zs, zlo, zhi) = memo
+        cw = ((x * m3 + y * m7) + z * m11) + m15
+        cx = ((x * m0 + y * m4) + z * m8) + m12
+        cy = ((x * m1 + y * m5) + z * m9) + m13
+        cz = ((x * m2 + y * m6) + z * m10) + m14
+        if not (cw > 0 and -cw <= cx <= cw and -cw <= cy <= cw and -cw <= cz <= cw):
+            ctx.cpos_valid = False
+            return
+        ctx.cpos_valid = True
+        ctx.cpos = (floor(xo + (cx / cw + 1.0) * xs / 2.0 + 0.5),
+                    floor(yo + (cy / cw + 1.0) * ys / 2.0 + 0.5))
+        zi = floor(zo + (cz / cw + 1.0) * zs / 2.0 + 0.5)
+        ctx.cpos_z = zlo if zi < zlo else zhi if zi > zhi else zi
 
     call.__name__ = call.__qualname__ = name
     call.__doc__ = (f"{name}(...): set the current character position to this "

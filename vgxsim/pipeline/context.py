@@ -124,6 +124,9 @@ class Context:
         self.cpos = (0, 0)
         self.cpos_z = 0
         self.cpos_valid = True
+        # cmov's window mapping (gl/_text.py _window_map): the mvp, viewport and depth
+        # range it was made for, then their floats; None until the first cmov.
+        self.cpos_map: tuple | None = None
         self.font = 0
         # pick(3G)/gselect(3G) mode (gl/_pick.py): a callable that hit-tests each
         # primitive in clip space instead of drawing it; None when drawing.
