@@ -232,3 +232,31 @@ def test_deferred_products_before_and_after_a_load_in_order(fast, monkeypatch):
         session.reset()
         monkeypatch.setattr(_core, "FAST_CALLS", True)
         session.refresh()
+
+
+def test_deferred_matrix_arguments_are_taken_at_the_call(ctx):
+    """multmatrix and loadmatrix's valid paths keep a copy of the 16 numbers (the
+    array is made where the product is formed, MatrixState._settle): changing the
+    caller's list afterwards changes nothing; ints, bools and Fractions among floats
+    give float(v) as the general path does; a complex element or a numpy array row
+    goes to the general path and raises there."""
+    from fractions import Fraction
+
+    m = [1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3.0, 4.0, 5.0, 1.0]
+    gl.loadmatrix(m)
+    m[12] = 99.0
+    gl.multmatrix(m)
+    m[0] = -7.0
+    want = np.array(m, np.float64).reshape(4, 4)
+    want[0, 0] = 1.0
+    first = want.copy()
+    first[3, 0] = 3.0
+    assert np.array(gl.getmatrix()).reshape(4, 4).tobytes() == (want @ first).tobytes()
+    odd = [1.0, 0, False, 0, 0, Fraction(1, 2), 0, 0, 0, 0, True, 0, 0, 0, 0, 1]
+    gl.loadmatrix(odd)
+    assert gl.getmatrix() == [float(v) for v in odd]
+    with pytest.raises(gl.GLTypeError, match=r"loadmatrix\(\[16 values\]\)"):
+        gl.loadmatrix([1.0] * 15 + [1j])
+    with pytest.raises(gl.GLTypeError, match=r"multmatrix\("):
+        gl.multmatrix([1.0] * 15 + [np.array([1.0, 2.0])])
+    assert gl.getmatrix() == [float(v) for v in odd]

@@ -415,26 +415,26 @@ def _not_stacked(name: str, args: tuple, ctx) -> None:
                        f"it with loadmatrix()") from None
 
 
-_F64 = np.dtype(np.float64)
-
-
-def _plain_matrix(m) -> np.ndarray | None:
-    """The float64 array of 16 of a Matrix given as one list or tuple of 16 plain
-    numbers, all finite, else None (the general path decides).  np.array makes a
-    float64 vector of such a list only when every element is a float, int or bool
-    -- what flat_numbers takes -- and float(v) is its value of each; a string, None,
-    a nested row or an int past 64 bits gives another dtype or shape.  A non-finite
-    element makes the sum non-finite (as does an overflowing sum of finite ones,
-    which the general path then accepts)."""
+def _plain_matrix(m) -> tuple | None:
+    """A Matrix given as one list or tuple of 16 plain numbers, all finite, as a
+    tuple of them (a copy: the caller may change its list), else None (the general
+    path decides).  One sum decides it: it is a float only when the elements are
+    ints, bools and at least one float -- what flat_numbers takes, each then worth
+    float(v) -- (a string, None, a nested row or a numpy scalar gives an error or
+    another type), and a non-finite element makes it non-finite (as does an
+    overflowing sum of finite ones, which the general path then accepts).  The
+    float64 array is made from the tuple where the product is formed
+    (MatrixState._settle), with the values ``np.array`` gives such a list: no
+    array per call that a popmatrix discards."""
     if (type(m) is not list and type(m) is not tuple) or len(m) != 16:
         return None
-    a = np.array(m)
-    if a.dtype is not _F64 or a.ndim != 1:
+    try:
+        t = sum(m)
+    except (TypeError, OverflowError):  # (an int past float range: general path)
         return None
-    t = sum(m)
-    if t - t != 0.0:
+    if type(t) is not float or t - t != 0.0:
         return None
-    return a  # (flat: MatrixState reshapes it where the product is formed)
+    return tuple(m)
 
 
 def _general_loadmatrix(*args, **kwargs) -> None:

@@ -68,6 +68,11 @@ def _translation(x: float, y: float, z: float) -> np.ndarray:
     return m
 
 
+def _matrix(m: tuple) -> np.ndarray:
+    """The (4, 4) float64 array, no one else's, of 16 Python numbers, row-major."""
+    return np.array(m, dtype=np.float64).reshape(4, 4)
+
+
 class MatrixStackError(RuntimeError):
     """Push beyond MATRIXSTACKDEPTH or pop of the last matrix."""
 
@@ -112,9 +117,9 @@ class MatrixState:
                 elif kind == _SCALE:
                     self.scale_by(op[1], op[2], op[3])
                 elif kind == _MULT:
-                    self.mult_by(op[1].reshape(4, 4))
+                    self.mult_by(_matrix(op[1]))
                 else:
-                    self._store(op[1].reshape(4, 4))  # (load_owned, settled already)
+                    self._store(_matrix(op[1]))  # (load_owned, settled already)
 
     def _defer(self, op: tuple) -> None:
         """Note a product (kind, *arguments) for :meth:`_settle`, in call order."""
@@ -140,19 +145,21 @@ class MatrixState:
             return
         self._defer((_ROTATE, degrees, axis))
 
-    def mult_deferred(self, m: np.ndarray) -> None:
-        """:meth:`mult_by` of a float64 array of 16 (or (4, 4)) no one else holds
-        (multmatrix's valid path), deferred as :meth:`rotate`."""
+    def mult_deferred(self, m: tuple) -> None:
+        """:meth:`mult_by` of the matrix of 16 numbers ``m`` (a tuple of Python
+        numbers, row-major; multmatrix's valid path), deferred as :meth:`rotate`;
+        the float64 array is made when the product is formed."""
         if not DEFER_PRODUCTS or self.pick is not None:
-            self.mult_by(m.reshape(4, 4))
+            self.mult_by(_matrix(m))
             return
         self._defer((_MULT, m))
 
-    def load_deferred(self, m: np.ndarray) -> None:
-        """:meth:`load_owned` (loadmatrix's valid path), deferred as :meth:`rotate`:
+    def load_deferred(self, m: tuple) -> None:
+        """:meth:`load_owned` of the matrix of 16 numbers ``m`` (as
+        :meth:`mult_deferred`; loadmatrix's valid path), deferred as :meth:`rotate`:
         the products noted before it are dropped, as the load would overwrite them."""
         if not DEFER_PRODUCTS or self.pick is not None:
-            self.load_owned(m.reshape(4, 4))
+            self.load_owned(_matrix(m))
             return
         self._pending = [(_LOAD, m)]
         self._mvp = None
