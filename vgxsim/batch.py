@@ -386,7 +386,7 @@ class CommandBatch:
         if idx is None:
             idx = len(self._state_rows)
             self._state_index[rs] = idx
-            self._state_rows.append(rs.as_row())
+            self._state_rows.append(rs.kept_row())  # (np.stack copies at the flush)
         return idx
 
     def _add_prims(self, kind: int, refs: np.ndarray, y0: np.ndarray, y1: np.ndarray) -> None:

@@ -30,3 +30,17 @@ def test_wide_masks_survive_the_row():
     row = rs.as_row()
     assert row[codes.S_WMPACK] == 0xFFFFFFFF
     assert row[codes.S_ZWRITEMASK] == 0xFFFFFFFF
+
+
+def test_kept_row_is_as_row_made_once_and_read_only():
+    """RasterState.kept_row (what CommandBatch.state_index stores per flush) is the
+    as_row of the snapshot, made once and kept on it, and cannot be written."""
+    a = RasterState(zbuffer=True, sref=128, sfunc=3, wmpack=0xFF, scissor=(1, 60, 2, 50))
+    b = dataclasses.replace(a, sref=129)
+    for rs in (a, b, RasterState()):
+        row = rs.kept_row()
+        assert np.array_equal(row, rs.as_row())
+        assert rs.kept_row() is row
+        assert not row.flags.writeable
+    assert a.kept_row()[codes.S_SREF] == 128 and b.kept_row()[codes.S_SREF] == 129
+    assert a == dataclasses.replace(b, sref=128)  # (the memo is no field)

@@ -265,22 +265,26 @@ class _StencilEntry:
     """stencil()'s memo entry for one valid argument tuple: its register, and the
     raster snapshot each snapshot becomes when only this register changes
     (``after[id(before)] = (before, after)``; ``before`` is kept so that its id
-    cannot be reused).  A snapshot is a function of the register values
-    (RasterRegisters.snapshot), so the pair found once holds for good, and the next
-    bgn* finds the snapshot made instead of building its 24-value key again."""
+    cannot be reused; ``last``: the pair found last, tried first -- the 1991 shadow
+    faces alternate between two argument tuples under one other state).  A snapshot
+    is a function of the register values (RasterRegisters.snapshot), so the pair
+    found once holds for good, and the next bgn* finds the snapshot made instead of
+    building its 24-value key again."""
 
-    __slots__ = ("reg", "after")
+    __slots__ = ("reg", "after", "last")
 
     def __init__(self, reg: StencilRegister):
         self.reg = reg
         self.after: dict[int, tuple] = {}
+        self.last: tuple = (None, None)
 
 
 _INTS = (int, Token)  # plain ints and GL tokens (an int subclass)
 
 
 @gl_function(binds=(7, 7, ("int",) * 7))
-def stencil(*args, **kwargs) -> None:
+def stencil(enable=_NO, ref=_NO, func=_NO, mask=_NO, fail=_NO, pass_=_NO, zpass=_NO, /,
+            *more, **kw) -> None:
     """stencil(enable, ref, func, mask, fail, pass_, zpass): set the stencil test and
     operations (stencil(3G)).
 
@@ -292,37 +296,40 @@ def stencil(*args, **kwargs) -> None:
     manual allows stencil only where planes exist, and the kernels skip the test.
     """
     ctx = session.imm
-    if ctx is not None and not kwargs and len(args) == 7:
+    if ctx is not None and not kw and not more:
         # The register of an argument tuple validated before (only enabling calls
         # whose arguments are all plain ints or GL tokens are remembered).  A float,
         # Fraction or numpy value equal to a remembered int would find it too, so the
         # sum must be a plain int: it is one only when every argument is an int (or a
         # bool or token, which the general path accepts alike); a float makes it a
-        # float, numpy a numpy scalar, and a str or None raise TypeError.  One sum
-        # costs less than seven type checks.
+        # float, numpy a numpy scalar, and a str, None or a missing argument (_NO)
+        # raise TypeError.  One sum costs less than seven type checks.
         try:
-            kind = type(args[0] + args[1] + args[2] + args[3] + args[4] + args[5]
-                        + args[6])
+            kind = type(enable + ref + func + mask + fail + pass_ + zpass)
         except TypeError:
             kind = None
         if kind is int:
             regs = ctx.raster
-            entry = regs.stencil_memo.get(args)
+            entry = regs.stencil_memo.get((enable, ref, func, mask, fail, pass_, zpass))
             if entry is not None:
                 before = regs._snapshot
                 regs.stencil = entry.reg
                 if before is None:
                     return  # (another register changed too: the next bgn* derives it)
-                pair = entry.after.get(id(before))
-                if pair is not None and pair[0] is before:
+                pair = entry.last
+                if pair[0] is before:
                     regs._snapshot = pair[1]
                     return
-                regs._snapshot = None
-                if len(entry.after) >= 64:
-                    entry.after.clear()
-                entry.after[id(before)] = (before, regs.snapshot())
+                pair = entry.after.get(id(before))
+                if pair is None or pair[0] is not before:
+                    regs._snapshot = None
+                    if len(entry.after) >= 64:
+                        entry.after.clear()
+                    pair = entry.after[id(before)] = (before, regs.snapshot())
+                entry.last = pair
+                regs._snapshot = pair[1]
                 return
-    _general_stencil(*args, **kwargs)
+    _general_stencil(*given((enable, ref, func, mask, fail, pass_, zpass), more), **kw)
 
 
 @gl_function()

@@ -108,6 +108,18 @@ class RasterState:
         row[ROW["sx0"]], row[ROW["sx1"]], row[ROW["sy0"]], row[ROW["sy1"]] = self.scissor
         return row
 
+    def kept_row(self) -> np.ndarray:
+        """:meth:`as_row`, made once per snapshot and kept on it (read-only): a batch
+        takes the rows of the snapshots it draws at every flush (CommandBatch.
+        state_index), and a frame draws the same few snapshots again; the values
+        never change (the snapshot is frozen)."""
+        row = self.__dict__.get("_row")
+        if row is None:
+            row = self.as_row()
+            row.flags.writeable = False
+            object.__setattr__(self, "_row", row)  # (frozen: not a field, a memo)
+        return row
+
 
 # Column of each field in a state-table row: the S_* layout of vgxsim.state.codes,
 # by field name (the scissor rectangle as sx0, sx1, sy0, sy1).
