@@ -57,6 +57,15 @@ DEFER_TRANSLATE = True
 #: same bit for bit either way).
 DEFER_PRODUCTS = True
 
+#: Fast path switch: the composite (:meth:`MatrixState.mvp`) is kept per top matrix
+#: and projection, so a popmatrix finds again the mvp *object* of the matrix it
+#: returns to (push/translate/draw/pop per object: the next primitive's draw state
+#: is the one recorded before the push, not a new product and a new record), and
+#: pushmatrix leaves the mvp as it is (the new top is the same matrix object).
+#: False: pushmatrix and popmatrix drop the mvp and the next read multiplies anew
+#: (the values are the same either way).
+KEEP_MVPS = True
+
 #: Kinds of a deferred product (MatrixState._pending entries: (kind, *arguments)).
 _TRANSLATE, _ROTATE, _SCALE, _MULT, _LOAD = 0, 1, 2, 3, 4
 
@@ -98,6 +107,11 @@ class MatrixState:
         # rotate_axis and scale_by's matrices, overwritten at each call (only their
         # products are kept): identity but for the entries a call writes.
         self._scratch = {k: np.eye(4) for k in "xyzs"}
+        # mvp()'s products by top matrix (KEEP_MVPS): id(top) -> (top, projection
+        # or None in MSINGLE, mvp); top and projection are kept so their ids cannot
+        # be reused, and no matrix here is changed in place, so identity is value.
+        self._kept: dict[int, tuple] = {}
+        self._kept_normal: dict[int, tuple] = {}  # id(modelview) -> (it, normal matrix)
 
     def _touch(self) -> None:
         self._mvp = None
@@ -314,8 +328,9 @@ class MatrixState:
             self._settle()
         # Shared, not copied: matrices are never changed in place (module docstring).
         self.modelview.append(self.modelview[-1])
-        self._mvp = None  # _touch(), inlined (pushmatrix/popmatrix: issue 6 per-call cost)
-        self._mv_inv_t = None
+        if not KEEP_MVPS:  # (else the mvp and normal matrix of the same top stay)
+            self._mvp = None  # _touch(), inlined (issue 6 per-call cost)
+            self._mv_inv_t = None
 
     def pop(self) -> None:
         if self.mode in (MPROJECTION, MTEXTURE):
@@ -352,10 +367,19 @@ class MatrixState:
         if self._mvp is None:
             if self._pending is not None:
                 self._settle()
-            if self.mode == MSINGLE:
-                self._mvp = self.modelview[-1].copy()
-            else:
-                self._mvp = self.modelview[-1] @ self.projection
+            top = self.modelview[-1]
+            proj = None if self.mode == MSINGLE else self.projection
+            if KEEP_MVPS:
+                hit = self._kept.get(id(top))
+                if hit is not None and hit[0] is top and hit[1] is proj:
+                    self._mvp = hit[2]
+                    return hit[2]
+            self._mvp = mvp = top.copy() if proj is None else top @ proj
+            if KEEP_MVPS:
+                kept = self._kept
+                if len(kept) >= 64:
+                    kept.clear()
+                kept[id(top)] = (top, proj, mvp)
         return self._mvp
 
     def mvp_flat(self) -> list[float]:
@@ -371,11 +395,22 @@ class MatrixState:
     def normal_matrix(self) -> np.ndarray:
         """Inverse transpose of the modelview's upper 3x3 (row-vector form)."""
         if self._mv_inv_t is None:
-            m = self.modelview_matrix()[:3, :3]
+            mv = self.modelview_matrix()
+            if KEEP_MVPS:  # (kept per modelview as the mvp is: mvp())
+                hit = self._kept_normal.get(id(mv))
+                if hit is not None and hit[0] is mv:
+                    self._mv_inv_t = hit[1]
+                    return hit[1]
+            m = mv[:3, :3]
             try:
                 self._mv_inv_t = np.linalg.inv(m).T
             except np.linalg.LinAlgError:
                 self._mv_inv_t = np.eye(3)
+            if KEEP_MVPS:
+                kept = self._kept_normal
+                if len(kept) >= 64:
+                    kept.clear()
+                kept[id(mv)] = (mv, self._mv_inv_t)
         return self._mv_inv_t
 
     def get(self) -> np.ndarray:
