@@ -7,7 +7,8 @@ Reports, medians over rounds, all measured in this one run:
 * ns per call of issue 6's other calls (bench ``other_calls``: move2/draw2, with the
   flush timed too, pnt2, rectf, cmov2, rot/rotate/scale/multmatrix/loadmatrix less
   push + pop, getmatrix, afunction, lsetdepth, lmcolor, mmode, frontbuffer,
-  setlinestyle), vgxsim only;
+  setlinestyle; push/translate/polygon/pop/polygon with state.matrices.KEEP_MVPS
+  off and on, alternating round by round), vgxsim only;
 * ns per call of the common immediate-mode calls (v3f, n3f, c3f, cpack,
   bgnpolygon/endpolygon, stencil, lmbind, zwritemask, wmpack,
   pushmatrix/translate/popmatrix, callobj of a small object), and the nearest
@@ -289,7 +290,49 @@ def other_calls(rounds: int) -> dict[str, float]:
         for _ in range(n):
             gl.cmov2(3.0, 4.0)
 
+    quad = ((1.0, 1.0, 0.0), (30.0, 1.0, 0.0), (30.0, 30.0, 0.0), (1.0, 30.0, 0.0))
+
+    def polygon():
+        gl.bgnpolygon()
+        gl.v3f(quad[0])
+        gl.v3f(quad[1])
+        gl.v3f(quad[2])
+        gl.v3f(quad[3])
+        gl.endpolygon()
+
+    def object_in_place():
+        # An object drawn under its own translation, then one at the outer matrix
+        # (13 calls): what popmatrix's kept mvp (state.matrices.KEEP_MVPS) saves.
+        for _ in range(n // 13):
+            gl.pushmatrix()
+            gl.translate(1.0, 2.0, 0.0)
+            polygon()
+            gl.popmatrix()
+            polygon()
+
+    def kept_mvps_ab() -> dict[bool, float]:
+        from vgxsim.state import matrices
+
+        ts: dict[bool, list] = {False: [], True: []}
+        try:
+            for r in range(rounds + 1):
+                for on in (False, True):
+                    matrices.KEEP_MVPS = on
+                    clock = CLOCK["ns"]
+                    t = clock()
+                    object_in_place()
+                    dt = clock() - t
+                    flush()
+                    if r:
+                        ts[on].append(dt)
+        finally:
+            matrices.KEEP_MVPS = True
+        return {on: float(np.median(v)) / (n // 13 * 13) for on, v in ts.items()}
+
     def drawing_rows():
+        ab = kept_mvps_ab()
+        out["push+translate+polygon+pop+polygon, KEEP_MVPS off (per call)"] = ab[False]
+        out["push+translate+polygon+pop+polygon, KEEP_MVPS on (per call)"] = ab[True]
         out["move2+draw2 (per call)"] = _median_ns(move_draw, n, rounds, after=flush)
         out["move2+draw2 + flush (per call)"] = _median_ns(move_draw_flushed, n, rounds)
         out["draw2"] = _median_ns(draw_only, n, rounds,
