@@ -153,6 +153,14 @@ def _restate(ctx, st) -> None:
 def _restate_changed(ctx, st) -> None:
     """:func:`_restate` where the caller has found the state changed (``same_state``
     false)."""
+    mats = ctx.matrices
+    if mats._mvp is None and st.mvp is not None:
+        # No composite since the last matrix change: form it now (intern would), and
+        # if it is the very one recorded -- a popmatrix back to the matrix of the last
+        # STATE op, matrices.KEEP_MVPS -- the recorded state still holds.
+        mats.mvp()
+        if same_state(ctx, st):
+            return
     regs = ctx.raster
     snap = regs._snapshot
     idx = -1

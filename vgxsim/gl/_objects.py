@@ -958,7 +958,10 @@ def _replay(ctx, dobj: DisplayObject) -> bool:
     snap = regs._snapshot
     if snap is None:
         snap = regs.snapshot()  # (a cache of the registers: filling it changes nothing)
-    if not (blk.ctx is ctx and blk.entry_snap is snap and ctx.matrices._mvp is blk.mvp
+    mvp = ctx.matrices._mvp
+    if mvp is None:  # (the same for the matrices; after a popmatrix, KEEP_MVPS gives
+        mvp = ctx.matrices.mvp()  # back the product of the matrix popped back to)
+    if not (blk.ctx is ctx and blk.entry_snap is snap and mvp is blk.mvp
             and ctx.depth_range is blk.depth and ctx.concave is blk.concave
             and ctx.vertex_serial == blk.vertex_serial and ctx.colour is blk.colour
             and ctx.normal is blk.normal and ctx.last_sent is blk.last_sent
