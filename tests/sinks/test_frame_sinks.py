@@ -77,11 +77,13 @@ def test_image_write_is_atomic(tmp_path, monkeypatch):
     write_image(path, bottom_up_image(seed=1)[..., :3])
     good = path.read_bytes()
 
-    def broken(fh, image, extension, plugin):
+    from PIL import Image
+
+    def broken(image, fh, format=None, **params):  # (write_image's encoder)
         fh.write(b"\x89PNG half")
         raise RuntimeError("disk on fire")
 
-    monkeypatch.setattr(iio, "imwrite", broken)
+    monkeypatch.setattr(Image.Image, "save", broken)
     with pytest.raises(SinkError, match="frame_0000.png: disk on fire"):
         write_image(path, bottom_up_image(seed=2), overwrite=True)
     assert path.read_bytes() == good  # old file intact
