@@ -3,6 +3,7 @@
     python bench/startup.py [--rounds N] [--workload triangle|shadows|all]
                             [--python NAME=PATH ...] [--serial]
                             [--variant NAME=VAR=VALUE[,VAR=VALUE...] ...] [--no-pyc]
+    python bench/startup.py --compiles [--with-helper] [--workload ...]
 
 Each measurement is one new ``python -c`` process: the time runs from just before
 the process is started to the moment its first image exists, so it includes the
@@ -90,7 +91,7 @@ import numba
 WORKLOADS = {"triangle": TRIANGLE, "shadows": SHADOWS}
 
 # --compiles: every Numba compile of the first image (one process, empty cache, no
-# helper), with its own CPU time (nested compiles of callees subtracted) and the
+# helper unless --with-helper), with its own CPU time (nested compiles subtracted) and the
 # kernel called from Python whose compile it was part of (its tree).
 COUNTER = r"""
 import json, sys, time
@@ -151,11 +152,19 @@ def start_times(code: str = TRIANGLE, python: str = sys.executable, warm_runs: i
     return cold, warm
 
 
-def compiles(code: str, python: str = sys.executable) -> list:
+def compiles(code: str, python: str = sys.executable, helper: bool = False) -> list:
     """[(function, argument types, own CPU seconds, tree)] of every compile of one cold
-    run; ``tree`` is the kernel called from Python whose compile it was part of."""
+    run; ``tree`` is the kernel called from Python whose compile it was part of.
+
+    ``helper``: with the parallel-compile helper of vgxsim/coldstart.py on, so the
+    rows are what this process still compiles itself (everything but the band tree
+    there ran serially, after the helper: docs/cold_start.md)."""
     with tempfile.TemporaryDirectory() as cache:
-        env = dict(os.environ, NUMBA_CACHE_DIR=cache, VGXSIM_PARALLEL_COMPILE="0")
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+        if helper:
+            env.pop("VGXSIM_PARALLEL_COMPILE", None)
+        else:
+            env["VGXSIM_PARALLEL_COMPILE"] = "0"
         proc = subprocess.run([python, "-c", COUNTER + code, repr(time.time()),
                                os.path.join(cache, "first.png")],
                               capture_output=True, text=True, env=env,
@@ -206,6 +215,9 @@ def main(argv=None) -> int:
                     help="also this interpreter with these environment variables")
     ap.add_argument("--compiles", action="store_true",
                     help="list the compiles of each workload's first image and exit")
+    ap.add_argument("--with-helper", action="store_true",
+                    help="with --compiles: the parallel-compile helper on, so only the "
+                         "main process's compiles are listed")
     ap.add_argument("--serial", action="store_true",
                     help="also this interpreter with VGXSIM_PARALLEL_COMPILE=0")
     ap.add_argument("--no-pyc", action="store_true",
@@ -227,7 +239,8 @@ def main(argv=None) -> int:
     if args.compiles:
         for w in names:
             for name, python, _ in variants:
-                print_compiles(f"{w} ({name})", compiles(WORKLOADS[w], python))
+                print_compiles(f"{w} ({name})", compiles(WORKLOADS[w], python,
+                                                         args.with_helper))
         return 0
     load0 = os.getloadavg()
     floor = []

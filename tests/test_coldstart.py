@@ -7,6 +7,7 @@ empty Numba cache and read the cache it leaves.
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -54,3 +55,42 @@ def test_switch_off_starts_no_helper(monkeypatch):
     monkeypatch.setattr(coldstart.subprocess, "Popen", lambda *a, **k: started.append(a))
     coldstart.prepare(object)
     assert started == []
+
+
+# A cold `vgxsim shadows` with the helper: the kernels this process compiles, by
+# tree (the kernel called from Python whose compile it was part of), on stdout.
+_MAIN_COMPILES = r"""
+import json, sys
+from numba.core import event
+_stack, _roots = [], set()
+class _Roots(event.Listener):
+    def on_start(self, ev):
+        f = ev.data["dispatcher"].py_func
+        _stack.append(f.__module__ + "." + f.__qualname__)
+    def on_end(self, ev):
+        name = _stack.pop()
+        if not _stack:
+            _roots.add(name)
+event.register("numba:compile", _Roots())
+from vgxsim.cli import main
+status = main(["shadows", "-o", sys.argv[1], "--size", "64x48"])
+print("ROOTS " + json.dumps(sorted(_roots)))
+sys.exit(status)
+"""
+
+
+@pytest.mark.slow
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="the helper needs two CPUs")
+def test_cold_shadows_compiles_only_the_band_tree_in_process(tmp_path):
+    """Everything but the band kernel (and the binning that feeds it) comes from the
+    helper's cache: a kernel compiled here as well ran serially after the helper.
+    Two did (docs/cold_start.md): light_transform_rows for the layout of a
+    many-record flush, and the scene's edge adjacency, built before any batch."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    env.pop("VGXSIM_PARALLEL_COMPILE", None)
+    proc = subprocess.run([sys.executable, "-c", _MAIN_COMPILES, str(tmp_path / "a.png")],
+                          env=env, capture_output=True, text=True, timeout=1800)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    roots = json.loads(proc.stdout.split("ROOTS ")[-1])
+    assert "vgxsim.kernels.render.render_bands_lean" in roots  # (a cold cache indeed)
+    assert [r for r in roots if not r.startswith("vgxsim.kernels.render.")] == []

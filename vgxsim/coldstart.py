@@ -15,7 +15,10 @@ this process compiles the band kernel by flushing a one-clear batch, then waits
 for the helper.  The geometry kernels then load from the cache.  The band kernel
 is the longer of the two, so the helper's extra kernels (those of ``vgxsim run``
 programs, ``vgxsim shadows`` and the examples) come at no cost to a first image
-that does not use them.
+that does not use them.  The helper's kernels must be compiled for the argument
+types the real first image passes (array layouts included: a signature the helper
+did not compile is compiled again, serially, in this process; see
+docs/cold_start.md for the two that were).
 
 Set ``VGXSIM_PARALLEL_COMPILE=0`` to compile in-process only (also the default on a
 single CPU, and whenever the cache cannot be inspected).
@@ -77,7 +80,9 @@ def _band_kernel_cached() -> bool | None:
 def prepare(batch_type) -> None:
     """Compile the kernels of a first image in parallel if the cache is cold.
 
-    Called by the first ``CommandBatch``; later calls return at once.
+    Called by the first ``CommandBatch``, and by ``vgxsim shadows`` before it builds
+    its scene (whose edge adjacency would otherwise compile alone, before any
+    batch exists); later calls return at once.
 
     Parameters
     ----------

@@ -275,3 +275,32 @@ def test_flush_segments_cuts_at_clears_and_classes():
     assert present[1].tolist() == [True, True, False] and present[4].tolist() == [
         False, False, True]
     assert local.tolist() == [0, 0, 1, 1, 0, 0, 0]
+
+
+def test_tables_give_light_transform_rows_one_signature_for_any_record_count(monkeypatch):
+    """The lighting columns are contiguous for one record and for many: a column
+    view's layout follows the record count (numpy's flags), and Numba would compile
+    light_transform_rows once per layout (cold start, docs/cold_start.md)."""
+    import numba
+
+    seen = []
+    real = flush_front.Tables.__init__
+
+    def spy(self, records, memo=None):
+        seen.append(list(records))
+        real(self, records, memo)
+
+    monkeypatch.setattr(flush_front.Tables, "__init__", spy)
+    _heidmann(monkeypatch, True)
+    monkeypatch.setattr(flush_front.Tables, "__init__", real)
+    records = max(seen, key=len)
+    assert len(records) > 1
+
+    def signature(tab):
+        args = (tab.mvp, tab.light_mode, tab.modelview, tab.normal_matrix, *tab.terms,
+                tab.shininess, tab.alpha, tab.light_lo, tab.light_hi, tab.lights, tab.lmodel)
+        return tuple(numba.typeof(a) for a in args)
+
+    one, many = signature(flush_front.Tables(records[:1])), signature(flush_front.Tables(records))
+    assert one == many
+    assert all(t.layout == "C" for t in many)

@@ -77,11 +77,13 @@ def test_image_write_is_atomic(tmp_path, monkeypatch):
     write_image(path, bottom_up_image(seed=1)[..., :3])
     good = path.read_bytes()
 
-    def broken(fh, image, extension, plugin):
+    from PIL import Image
+
+    def broken(image, fh, format=None, **params):  # (write_image's encoder)
         fh.write(b"\x89PNG half")
         raise RuntimeError("disk on fire")
 
-    monkeypatch.setattr(iio, "imwrite", broken)
+    monkeypatch.setattr(Image.Image, "save", broken)
     with pytest.raises(SinkError, match="frame_0000.png: disk on fire"):
         write_image(path, bottom_up_image(seed=2), overwrite=True)
     assert path.read_bytes() == good  # old file intact
@@ -303,3 +305,20 @@ def test_an_empty_placeholder_is_not_an_earlier_output(tmp_path):
     with VideoSink(tmp) as sink:  # nothing to lose: no --overwrite needed
         sink.write(flat(2, 2, (7, 7, 7)))
     assert iio.imread(tmp, index=None).shape[:3] == (1, 2, 2)
+
+
+@pytest.mark.parametrize("name", ["a.png", "a.jpg", "a.tif"])
+@pytest.mark.parametrize("channels", [3, 4])
+def test_write_image_writes_what_imageio_writes(tmp_path, name, channels):
+    """write_image calls Pillow itself (imageio's plugin imports every Pillow format
+    plugin first, a cost of every start): the file is the one imageio's pillow
+    plugin writes, byte for byte, and a non-contiguous view is written as its
+    values."""
+    top = bottom_up_image(9, 7, seed=channels)[::-1][..., :channels]
+    write_image(tmp_path / name, top)
+    want = top[..., :3] if name.endswith(".jpg") else top
+    ref = iio.imwrite("<bytes>", np.ascontiguousarray(want), extension=name[1:],
+                      plugin="pillow")
+    assert (tmp_path / name).read_bytes() == ref
+    if not name.endswith(".jpg"):  # lossless
+        assert np.array_equal(iio.imread(tmp_path / name, plugin="pillow"), top)

@@ -153,13 +153,18 @@ class Tables:
         self.modelview = np.array(mvs, np.float64).reshape(-1, 4, 4)
         self.normal_matrix = np.array(nms, np.float64).reshape(-1, 3, 3)
         mat = np.array(mats, np.float64).reshape(-1, 14)
-        # Column views (the kernel takes any layout): no copies.
-        self.terms = [mat[:, k:k + 3] for k in (0, 3, 6, 9)]
-        self.shininess = mat[:, 12]
-        self.alpha = mat[:, 13]
+        # Contiguous copies of the columns (a few numbers per record), not views: a
+        # column view is C-contiguous for one record and not for more (numpy's flags),
+        # and Numba compiles light_transform_rows once per layout, so a program's
+        # second flush with more records than its first would compile it again
+        # (3 s of a cold `vgxsim shadows`, docs/cold_start.md).
+        col = np.ascontiguousarray
+        self.terms = [col(mat[:, k:k + 3]) for k in (0, 3, 6, 9)]
+        self.shininess = col(mat[:, 12])
+        self.alpha = col(mat[:, 13])
         sp = np.array(spans, np.int64).reshape(-1, 2)
-        self.light_lo = sp[:, 0]
-        self.light_hi = sp[:, 1]
+        self.light_lo = col(sp[:, 0])
+        self.light_hi = col(sp[:, 1])
         self.lmodel = np.array(lms, np.float64).reshape(-1, LMODEL_COLUMNS)
         self.lights = np.concatenate(tables) if tables else np.zeros((0, LIGHT_COLUMNS))
 

@@ -264,6 +264,13 @@ def run_shadows(ns: argparse.Namespace) -> int:
     if problem:
         print(f"{prog}: {problem}", file=sys.stderr)
         return 2
+    # With an empty Numba cache: the band kernel compiles here while the helper of
+    # vgxsim/coldstart.py compiles the geometry kernels, the scene's edge adjacency
+    # among them (which would otherwise compile first, alone, in this process).
+    from vgxsim import coldstart
+    from vgxsim.batch import CommandBatch
+
+    coldstart.prepare(CommandBatch)
     try:
         scene = api.load_scene(ns.scene, use_cache=not ns.no_cache)
     except FormatError as exc:

@@ -29,6 +29,9 @@ __all__ = ["IMAGE_FORMATS", "SinkError", "write_image", "image_format",
 IMAGE_FORMATS = {".png": ".png", ".jpg": ".jpg", ".jpeg": ".jpg", ".tif": ".tif",
                  ".tiff": ".tif"}
 
+#: imageio extension -> Pillow's format name.
+_PIL_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".tif": "TIFF"}
+
 _tmp_counter = itertools.count()
 
 
@@ -137,13 +140,17 @@ def write_image(path: str | PathLike, top_down: np.ndarray, *, overwrite: bool =
         For an unknown suffix, an existing file without ``overwrite``, or any write
         failure; the message names the file.
     """
-    import imageio.v3 as iio
-
     path = os.fspath(path)
     ext = image_format(path)
     if not overwrite and os.path.lexists(path) and _holds_data(path):
         raise SinkError(f"{path} exists; give --overwrite (overwrite=True) to replace it")
     if ext == ".jpg":
         top_down = np.ascontiguousarray(top_down[..., :3])
-    # Pillow writes all three (imageio's vendored tifffile is deprecated)
-    atomic_write(path, lambda fh: iio.imwrite(fh, top_down, extension=ext, plugin="pillow"))
+    # Pillow writes all three (imageio's vendored tifffile is deprecated), called
+    # directly: imageio's pillow plugin asks Pillow for every registered extension,
+    # which imports all of its ~40 format plugins (about 0.07 s CPU of a warm
+    # `vgxsim shadows`, docs/cold_start.md); the bytes are the same.
+    from PIL import Image
+
+    atomic_write(path, lambda fh: Image.fromarray(np.ascontiguousarray(top_down)).save(
+        fh, format=_PIL_FORMATS[ext]))

@@ -35,7 +35,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vgxsim.shadow.raycast import light_position
 from vgxsim.shadow.scene import Camera, Polyhedron, Scene
 
 
@@ -44,6 +43,10 @@ def light4(light) -> np.ndarray:
 
     Uses :func:`vgxsim.shadow.raycast.light_position` (same reading as the reference).
     """
+    # Imported here: the ray-cast oracle (and its BVH and ray kernels) is not needed
+    # to draw, and importing it is ~0.03 s of every start (docs/cold_start.md).
+    from vgxsim.shadow.raycast import light_position
+
     return light_position(light)
 
 
