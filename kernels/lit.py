@@ -192,6 +192,7 @@ def lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx,
     """One row of :func:`lit_span_lanes` (``zwrite``, ``add``: constants in each
     call, so each call is its own loop with no branch on them; ``add`` as in
     :func:`blend_lanes`)."""
+    zany = np.int32(-np.int32(lt | eq | gt))
     for x in range(xl, xr + 1):
         ux = np.uintp(x)
         dx = np.float64(np.int32(x)) - x0
@@ -200,9 +201,13 @@ def lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx,
         zb = zbuf[uy, ux]
         ok = sok & cmp_select(lt, eq, gt, zi, zb)
         if zwrite:
+            # By masks, as the colour (blend_lanes): ``zw if ok else zb`` is a select
+            # on the loaded word, which LLVM stores by vpmaskmovd (microcoded on
+            # AMD); ``zany`` (-1 unless ZF_NEVER, where nothing passes) hides it.
+            mz = np.int32(np.int32(np.int32(0) - np.int32(ok)) & zany)
             zw = np.int32(np.int32(np.int32(zi + np.int32(0x800000)) & np.int32(0xFFFFFF))
                           - np.int32(0x800000))
-            zbuf[uy, ux] = zw if ok else zb
+            zbuf[uy, ux] = np.int32(np.int32(zw & mz) | np.int32(zb & ~mz))
         src = pack_lanes(dx, ra, ga, ba, aa, rdx, gdx, bdx, adx)
         cbuf[uy, ux] = blend_lanes(ok, src, cbuf[uy, ux], add, wm32)
 

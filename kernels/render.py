@@ -64,6 +64,7 @@ from vgxsim.state.codes import (
 
 from .blocks import z_passed_row
 from .borrow import borrow, keep_alive
+from .fill import FILL_MIN_SPAN, zonly_span, zstencil_span
 from .fragment import (
     add_sat,
     blend_sa_msa,
@@ -191,9 +192,9 @@ def _triangle_rows(
     tight_tiles, step_spans, vector_pack, small_path, block_update, lit, tb, runs, spans,
     work, tex,
 ):
-    # lit = (lit_spans, lit_lanes): one argument, as an inlined call of more than
+    # lit = (lit_spans, lit_lanes, fill_spans): one argument, as an inlined call of more than
     # 30 arguments compiles to CALL_FUNCTION_EX, which Numba cannot inline.
-    lit_spans, lit_lanes = lit
+    lit_spans, lit_lanes, fill_spans = lit
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
     xlo = max(t_box[t, 0], st[S_SX0])
@@ -358,6 +359,13 @@ def _triangle_rows(
             if runs[r, 2] == TILE_ZPASS:
                 z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                              cbuf, zbuf, sten, vector_pack, lit_lanes)
+            elif (mode == MODE_ZSTENCIL_ADD and fill_spans and vector_pack
+                  and xr - xl >= FILL_MIN_SPAN - 1 and zmin >= -2147483648
+                  and zmax <= 2147483647):
+                # The same loop compiled on its own, on int32 lanes (kernels/fill.py:
+                # in this kernel its invariants are spilled and reloaded per vector).
+                zstencil_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, lt, eq, gt, dpass, dfail,
+                              smax, zbuf, sten)
             elif mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
                     and zmax <= 2147483647:
                 # The shadow-volume pass with z rounded through int32 (vectorizes;
@@ -388,6 +396,10 @@ def _triangle_rows(
                         sten[uy, ux] = tab[0, sv]
                     else:
                         sten[uy, ux] = tab[1, sv]
+            elif (mode == MODE_ZONLY and fill_spans and vector_pack
+                  and xr - xl >= FILL_MIN_SPAN - 1 and zmin >= -2147483648
+                  and zmax <= 2147483647):
+                zonly_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, lt, eq, gt, zbuf)
             elif mode == MODE_ZONLY:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
@@ -679,8 +691,8 @@ def render_bands(
     states, derived, tables,
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
-    small_path, block_update, lit_spans, lit_lanes, prefetch_planes, borrow_arrays, work,
-    tex,
+    small_path, block_update, lit_spans, lit_lanes, fill_spans, prefetch_planes, borrow_arrays,
+    work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -742,6 +754,10 @@ def render_bands(
         With ``lit_spans``: those spans, and the block update's lit and ambient
         rows, on 32-bit lanes where every plane's values are bounded
         (:func:`.lit.lit_span_lanes`; a switch, on by default; same planes).
+    fill_spans : bool
+        With ``vector_pack``: spans of at least ``FILL_MIN_SPAN`` pixels of the
+        z+stencil pass with arithmetic ops and of the depth-only pass run the
+        out-of-line loops of :mod:`.fill` (a switch, on by default; same planes).
     prefetch_planes : bool
         Prefetch the plane rows of the small triangle ``PREFETCH_DISTANCE`` entries
         ahead (:mod:`.prefetch`; a hint: a switch, on by default; same planes).
@@ -809,7 +825,7 @@ def render_bands(
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
                     cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
-                    (lit_spans, lit_lanes), tb, runs,
+                    (lit_spans, lit_lanes, fill_spans), tb, runs,
                     spans, bw,
                     tex,
                 )
