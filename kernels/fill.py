@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from .fragment import round_z_i32
-from .lit import LANES_A, LANES_D
+from .lit import LANES_A, LANES_D, z_keep
 from .options import callee, inline
 
 FILL_MIN_SPAN = 16  # shorter spans run the band kernel's own loop (no call)
@@ -104,25 +104,26 @@ def zstencil_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, lt, eq, gt, dpass, dfail
 
 
 @inline
-def _z_store(zi, zb, passed, anym):
+def _z_store(zi, zb, passed, zkeep):
     """The word the depth pass stores: :func:`.fragment.wrap_z24` of ``zi`` where
-    ``passed`` (a mask), else the loaded ``zb``.  ``anym`` is -1 unless the code is
-    ZF_NEVER (where no pixel passes): and-ed into the mask, it keeps LLVM from
-    seeing a select on the loaded word, which it stores by vpmaskmovd."""
-    m = np.int32(passed & anym)
+    ``passed`` (a mask), else the loaded ``zb``.  ``zkeep`` is :func:`.lit.z_keep`'s
+    -1, a run-time value: and-ed into the mask, it keeps LLVM from seeing a select
+    on the loaded word, which it stores by vpmaskmovd."""
+    m = np.int32(passed & zkeep)
     zw = np.int32(np.int32(np.int32(zi + np.int32(0x800000)) & np.int32(0xFFFFFF))
                   - np.int32(0x800000))
     return np.int32(np.int32(zw & m) | np.int32(zb & ~m))
 
 
 @callee
-def zonly_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, lt, eq, gt, zbuf):
+def zonly_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, lt, eq, gt, zmask, zbuf):
     """Row ``uy``, columns ``[xl, xr]`` of the depth-only pass: z test (bits ``lt,
     eq, gt``) and, where it passes, the full-mask z write of
     :func:`.fragment.wrap_z24` of ``round_z_i32(za + dzdx*(x - x0))``; ``zmin``,
-    ``zmax`` within int32 (the caller checks)."""
+    ``zmax`` within int32 (the caller checks); ``zmask`` the state's z write mask
+    (D_ZMASK: the full 24 bits in MODE_ZONLY)."""
     mlt, meq, mgt = _masks(lt, eq, gt)
-    anym = np.int32(np.int32(mlt | meq) | mgt)
+    zkeep = z_keep(zmask)
     if z_bounded(za, dzdx, xl, xr, x0):
         zlo = np.float64(zmin)
         zhi = np.float64(zmax)
@@ -131,11 +132,11 @@ def zonly_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, lt, eq, gt, zbuf):
             dx = np.float64(np.int32(x)) - x0
             zi = np.int32(min(max(np.floor(za + dzdx * dx + 0.5), zlo), zhi))
             zb = zbuf[uy, ux]
-            zbuf[uy, ux] = _z_store(zi, zb, cmp_mask(mlt, meq, mgt, zi, zb), anym)
+            zbuf[uy, ux] = _z_store(zi, zb, cmp_mask(mlt, meq, mgt, zi, zb), zkeep)
     else:
         for x in range(xl, xr + 1):
             ux = np.uintp(x)
             dx = np.float64(np.int32(x)) - x0
             zi = np.int32(round_z_i32(za + dzdx * dx, zmin, zmax))
             zb = zbuf[uy, ux]
-            zbuf[uy, ux] = _z_store(zi, zb, cmp_mask(mlt, meq, mgt, zi, zb), anym)
+            zbuf[uy, ux] = _z_store(zi, zb, cmp_mask(mlt, meq, mgt, zi, zb), zkeep)

@@ -165,6 +165,12 @@ class CommandBatch:
         loops compiled on their own, on 32-bit lanes (vgxsim/kernels/fill.py: in
         the band kernel their invariants are spilled and reloaded per vector); on
         by default, the same planes either way.
+    zpass_spans : bool
+        With ``block_update``: in tiles only partly covered by a triangle whose
+        depth bounds prove that its z test passes everywhere there, the triangle's
+        row spans run the block update's loop as well (kernels/tiles.py
+        TILE_ZPASS_SPAN: the diagonal of a full-screen quad, the tiles along a
+        shadow face's edges); on by default, the same planes and work counters.
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy
@@ -213,6 +219,7 @@ class CommandBatch:
     lit_spans = True
     lit_lanes = True
     fill_spans = True
+    zpass_spans = True
     band_records = True
     scatter_bins = True
     prefetch_planes = True
@@ -754,7 +761,7 @@ class CommandBatch:
             front, back, z, st, self.edge_mode, self.general_only,
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
             self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
-            self.fill_spans,
+            self.fill_spans, self.zpass_spans,
             self.prefetch_planes, self.borrow_arrays, work,
             (self.t_tex, *tex_table),
         )
