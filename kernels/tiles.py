@@ -99,12 +99,15 @@ def scan_tile(zbuf, tx, y_lo, y_hi, tb, i):
     """Exact depth bounds of tile column ``tx`` over rows ``[y_lo, y_hi]`` into ``tb[i]``."""
     x0 = tx << TILE_SHIFT
     x1 = min(x0 + TILE_W, zbuf.shape[1]) - 1
-    lo = np.int64(zbuf[y_lo, x0])
+    # On the int32 values themselves, indexed in place: vpminsd / vpmaxsd on eight
+    # lanes (AVX2 has no packed int64 min or max) and no row view (whose reference
+    # count costs two atomic updates per row).
+    lo = zbuf[y_lo, x0]
     hi = lo
     for y in range(y_lo, y_hi + 1):
-        row = zbuf[y]
+        uy = np.uintp(y)
         for x in range(x0, x1 + 1):
-            v = np.int64(row[np.uintp(x)])
+            v = zbuf[uy, np.uintp(x)]
             lo = min(lo, v)
             hi = max(hi, v)
     tb[i, TB_VALID] = TB_EXACT
