@@ -12,6 +12,8 @@ and compared plane by plane and counter by counter, and against the naive
 reference; so is the Heidmann frame.
 """
 
+import dataclasses
+
 import numpy as np
 import pytest
 from kernel_helpers import assert_planes_equal, full_state, random_planes, render_naive
@@ -40,15 +42,18 @@ ZFUNCS = [CMP_LESS, CMP_LEQUAL, CMP_EQUAL, CMP_GREATER, CMP_GEQUAL, CMP_NOTEQUAL
 
 
 def _steep(rng):
-    """A quad 16 pixels wide whose depth crosses +-2.1e9 over that width: a depth
-    gradient above 2**28 per pixel (the checked loop) with its depth range inside
-    int32 (so the span loops of kernels/fill.py still take it)."""
+    """A quad over 16 pixel centres of each row (x .. x + 15) whose depth crosses
+    +-2.1e9 over 15.5 pixels: a depth gradient above 2**28 per pixel, so the loops'
+    checked depth form (kernels/fill.py z_bounded false), with the depth range inside
+    int32 and spans of FILL_MIN_SPAN pixels (so the span loops of kernels/fill.py
+    still take it); drawn with subpixel(TRUE), which keeps its quarter pixels."""
     x = float(rng.integers(0, W - 20))
     y = float(rng.integers(0, H - 40))
     lo, hi = -2.1e9, 2.1e9
     col = (0.5, 0.5, 0.5, 1.0)
-    a, b, c, d = (x, y, lo, col), (x + 15.0, y, hi, col), (x + 15.0, y + 30, hi, col), (
-        x, y + 30, lo, col)
+    x0, x1 = x - 0.25, x + 15.25
+    a, b, c, d = (x0, y, lo, col), (x1, y, hi, col), (x1, y + 30, hi, col), (
+        x0, y + 30, lo, col)
     return [(a, b, c), (a, c, d)]
 
 
@@ -67,8 +72,9 @@ def _scene(rng):
                             szpass=int(rng.choice([OP_INCR, OP_DECR, OP_KEEP])),
                             spass=int(rng.choice([OP_INCR, OP_DECR, OP_KEEP])))
         if rng.random() < 0.15:
+            steep = dataclasses.replace(rs, subpixel=True)  # keep the quarter pixels
             for tri in _steep(rng):
-                cmds.append(("triangle", tri, rs))
+                cmds.append(("triangle", tri, steep))
         else:
             size = float(rng.choice([4.0, FILL_MIN_SPAN / 2, FILL_MIN_SPAN, 40.0, 200.0]))
             cmds.append(("triangle", _tri(rng, size, -8e6, 8e6), rs))
