@@ -124,7 +124,8 @@ def small_triangle_split(rounds: int) -> dict:
 
 
 RASTER_SWITCHES = ("step_spans", "band_records", "vector_pack", "small_path",
-                   "block_update", "lit_spans", "lit_lanes", "prefetch_planes",
+                   "block_update", "lit_spans", "lit_lanes", "fill_spans", "zpass_spans",
+                   "prefetch_planes",
                    "borrow_arrays")  # CommandBatch, issue 7
 
 

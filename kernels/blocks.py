@@ -32,6 +32,7 @@ from vgxsim.state.codes import (
     D_MODE,
     D_SMAX,
     D_STENCIL,
+    D_ZMASK,
     D_ZWRITE,
     MODE_COLOUR,
     MODE_ZONLY,
@@ -127,7 +128,7 @@ def _colour_passed(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, c
         # here, so the fragment does what this function's loops do.
         lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
                        True, True, True, zwrite, stest, slt, seq, sgt, smask, sref, add, wm,
-                       cbuf, zbuf, sten)
+                       dv[D_ZMASK], cbuf, zbuf, sten)
     elif not (vector_pack and zmin >= -2147483648 and zmax <= 2147483647):
         # The reference form (vector_pack off): int64 conversions, branches.
         for x in range(xl, xr + 1):

@@ -186,12 +186,24 @@ def blend_lanes(ok, src, dst, add, wm32):
     return np.uint32(np.uint32(dst & ~mm) | np.uint32(out & mm))
 
 
+@inline
+def z_keep(zmask):
+    """The 24-bit z write mask ``zmask`` widened to 32 bits (``| 0xFF000000``): -1
+    for the full mask that every z-writing state of these loops has
+    (vgxsim/state/derive.py).  A value LLVM cannot fold to a constant: and-ed into
+    a pass mask, it keeps the masked z store a plain store of a merged word."""
+    return np.int32(np.int32(zmask) | np.int32(-16777216))
+
+
 @inline_ir
 def lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-              lt, eq, gt, zwrite, slt, seq, sgt, sm, sr, add, wm32, cbuf, zbuf, sten):
+              lt, eq, gt, zwrite, slt, seq, sgt, sm, sr, add, wms, cbuf, zbuf, sten):
     """One row of :func:`lit_span_lanes` (``zwrite``, ``add``: constants in each
     call, so each call is its own loop with no branch on them; ``add`` as in
-    :func:`blend_lanes`)."""
+    :func:`blend_lanes`; ``wms`` = (colour write mask as uint32, :func:`z_keep`'s
+    -1): one argument, as an inlined call of more than 30 arguments compiles to
+    CALL_FUNCTION_EX, which Numba cannot inline)."""
+    wm32, zkeep = wms
     for x in range(xl, xr + 1):
         ux = np.uintp(x)
         dx = np.float64(np.int32(x)) - x0
@@ -200,22 +212,28 @@ def lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx,
         zb = zbuf[uy, ux]
         ok = sok & cmp_select(lt, eq, gt, zi, zb)
         if zwrite:
+            # By masks, as the colour (blend_lanes): ``zw if ok else zb`` is a select
+            # on the loaded word, which LLVM stores by vpmaskmovd (microcoded on
+            # AMD); and-ing the run-time ``zkeep`` into the mask hides it.
+            mz = np.int32(np.int32(np.int32(0) - np.int32(ok)) & zkeep)
             zw = np.int32(np.int32(np.int32(zi + np.int32(0x800000)) & np.int32(0xFFFFFF))
                           - np.int32(0x800000))
-            zbuf[uy, ux] = zw if ok else zb
+            zbuf[uy, ux] = np.int32(np.int32(zw & mz) | np.int32(zb & ~mz))
         src = pack_lanes(dx, ra, ga, ba, aa, rdx, gdx, bdx, adx)
         cbuf[uy, ux] = blend_lanes(ok, src, cbuf[uy, ux], add, wm32)
 
 
 @callee
 def lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                   lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, add, wm, cbuf,
-                   zbuf, sten):
+                   lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, add, wm, zmask,
+                   cbuf, zbuf, sten):
     """:func:`lit_span` on 32-bit lanes, for planes within :func:`lanes_plane_ok`
-    (the caller checks, with ``|x - x0| < 2**31`` and zmin, zmax within int32)."""
+    (the caller checks, with ``|x - x0| < 2**31`` and zmin, zmax within int32);
+    ``zmask`` the state's z write mask (D_ZMASK: the full 24 bits where ``zwrite``)."""
     zlo = np.float64(zmin)
     zhi = np.float64(zmax)
     wm32 = np.uint32(wm)
+    wms = (wm32, z_keep(zmask))
     # The stencil test on int32 lanes: a byte's ``s & smask`` is ``s & (smask &
     # 0xFF)``, and a reference beyond 0..255 compares with every byte as -1 or 256
     # do.  Without the test, one that always passes: ``0 == (s & 0)``.
@@ -226,42 +244,43 @@ def lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gd
     if zwrite:
         if add:
             lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                      lt, eq, gt, True, slt, seq, sgt, sm, sr, 1, wm32, cbuf, zbuf, sten)
+                      lt, eq, gt, True, slt, seq, sgt, sm, sr, 1, wms, cbuf, zbuf, sten)
         else:
             lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                      lt, eq, gt, True, slt, seq, sgt, sm, sr, 0, wm32, cbuf, zbuf, sten)
+                      lt, eq, gt, True, slt, seq, sgt, sm, sr, 0, wms, cbuf, zbuf, sten)
     elif add and (not lt) and eq and (not gt) and (not slt) and seq and (not sgt):
         # Heidmann's lit pass (zfunction(ZF_EQUAL), stencil EQUAL, ONE+ONE) with its
         # comparison codes as constants: one compare each instead of three and the
         # masks of their outcome bits (the same values).
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                  False, True, False, False, False, True, False, sm, sr, 1, wm32, cbuf,
-                  zbuf, sten)
+                  False, True, False, False, False, True, False, sm, sr, 1, wms,
+                  cbuf, zbuf, sten)
     elif add:
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 1, wm32, cbuf, zbuf, sten)
+                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 1, wms, cbuf, zbuf, sten)
     else:
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 0, wm32, cbuf, zbuf, sten)
+                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 0, wms, cbuf, zbuf, sten)
 
 
 @callee
 def alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                     lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, cbuf, zbuf,
-                     sten):
+                     lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref, wm, zmask, cbuf,
+                     zbuf, sten):
     """render._alpha_span (blendfunction(BF_SA, BF_MSA), z test on) on 32-bit lanes,
     for spans :func:`lanes_ok` allows: the loop of :func:`lit_span_lanes` with the
     alpha blend of :func:`blend_sa_msa32`."""
     zlo = np.float64(zmin)
     zhi = np.float64(zmax)
     wm32 = np.uint32(wm)
+    wms = (wm32, z_keep(zmask))
     sm = np.int32(smask & 0xFF if stest else 0)
     sr = np.int32(min(max(sref, -1), 256) if stest else 0)
     if not stest:
         slt, seq, sgt = False, True, False
     if zwrite:
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                  lt, eq, gt, True, slt, seq, sgt, sm, sr, 2, wm32, cbuf, zbuf, sten)
+                  lt, eq, gt, True, slt, seq, sgt, sm, sr, 2, wms, cbuf, zbuf, sten)
     else:
         lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
-                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 2, wm32, cbuf, zbuf, sten)
+                  lt, eq, gt, False, slt, seq, sgt, sm, sr, 2, wms, cbuf, zbuf, sten)

@@ -64,6 +64,7 @@ from vgxsim.state.codes import (
 
 from .blocks import z_passed_row
 from .borrow import borrow, keep_alive
+from .fill import FILL_MIN_SPAN, zonly_span, zstencil_span
 from .fragment import (
     add_sat,
     blend_sa_msa,
@@ -101,6 +102,7 @@ from .tiles import (
     TILE_SHIFT,
     TILE_W,
     TILE_ZPASS,
+    TILE_ZPASS_SPAN,
     classify_tiles,
     note_z_cleared,
     note_z_written,
@@ -191,9 +193,10 @@ def _triangle_rows(
     tight_tiles, step_spans, vector_pack, small_path, block_update, lit, tb, runs, spans,
     work, tex,
 ):
-    # lit = (lit_spans, lit_lanes): one argument, as an inlined call of more than
-    # 30 arguments compiles to CALL_FUNCTION_EX, which Numba cannot inline.
-    lit_spans, lit_lanes = lit
+    # lit = (lit_spans, lit_lanes, fill_spans, zpass_spans): one argument, as an inlined
+    # call of more than 30 arguments compiles to CALL_FUNCTION_EX, which Numba cannot
+    # inline.
+    lit_spans, lit_lanes, fill_spans, zpass_spans = lit
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
     xlo = max(t_box[t, 0], st[S_SX0])
@@ -316,7 +319,7 @@ def _triangle_rows(
                                                          else TILE_MIN_PIXELS):
                 nruns = classify_tiles(t, cxl, cxr, cy0, cy1, c_lo, c_hi, ty * ntx, t_edge,
                                        t_z, t_zlim, st, zbuf, tb, runs, skip, cover_blocks,
-                                       not edge_mode, zpass, work)
+                                       not edge_mode, zpass, zpass and zpass_spans, work)
             else:
                 runs[0, 0] = cxl
                 runs[0, 1] = cxr
@@ -325,7 +328,7 @@ def _triangle_rows(
         if nruns == 0 or (stored and sl > sr):
             continue  # every tile of this tile row skipped, or an empty row
         for r in range(nruns):
-            full = runs[r, 2] >= TILE_FULL  # TILE_FULL or TILE_ZPASS
+            full = runs[r, 2] == TILE_FULL or runs[r, 2] == TILE_ZPASS
             if full or edge_mode:
                 xl = runs[r, 0]
                 xr = runs[r, 1]
@@ -355,9 +358,16 @@ def _triangle_rows(
             # costs two (atomic, out-of-line) reference-count updates, several per
             # row of a small triangle, and the threads share the counts' cache line.
             uy = np.uintp(y)
-            if runs[r, 2] == TILE_ZPASS:
+            if runs[r, 2] == TILE_ZPASS or runs[r, 2] == TILE_ZPASS_SPAN:
                 z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
                              cbuf, zbuf, sten, vector_pack, lit_lanes)
+            elif (mode == MODE_ZSTENCIL_ADD and fill_spans and vector_pack
+                  and xr - xl >= FILL_MIN_SPAN - 1 and zmin >= -2147483648
+                  and zmax <= 2147483647):
+                # The same loop compiled on its own, on int32 lanes (kernels/fill.py:
+                # in this kernel its invariants are spilled and reloaded per vector).
+                zstencil_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, lt, eq, gt, dpass, dfail,
+                              smax, zbuf, sten)
             elif mode == MODE_ZSTENCIL_ADD and vector_pack and zmin >= -2147483648 \
                     and zmax <= 2147483647:
                 # The shadow-volume pass with z rounded through int32 (vectorizes;
@@ -388,6 +398,10 @@ def _triangle_rows(
                         sten[uy, ux] = tab[0, sv]
                     else:
                         sten[uy, ux] = tab[1, sv]
+            elif (mode == MODE_ZONLY and fill_spans and vector_pack
+                  and xr - xl >= FILL_MIN_SPAN - 1 and zmin >= -2147483648
+                  and zmax <= 2147483647):
+                zonly_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, lt, eq, gt, dv[D_ZMASK], zbuf)
             elif mode == MODE_ZONLY:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
@@ -467,7 +481,7 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
                              adx)):
             alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
                              bdx, adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt,
-                             smask, sref, wm, cbuf, zbuf, sten)
+                             smask, sref, wm, dv[D_ZMASK], cbuf, zbuf, sten)
         elif blend == CBLEND_SA_MSA:
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
@@ -481,7 +495,7 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
                                       gdx, bdx, adx):
                 lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
                                bdx, adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt,
-                               smask, sref, add, wm, cbuf, zbuf, sten)
+                               smask, sref, add, wm, dv[D_ZMASK], cbuf, zbuf, sten)
             else:
                 lit_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                          adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask,
@@ -679,8 +693,8 @@ def render_bands(
     states, derived, tables,
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
-    small_path, block_update, lit_spans, lit_lanes, prefetch_planes, borrow_arrays, work,
-    tex,
+    small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
+    borrow_arrays, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -742,6 +756,14 @@ def render_bands(
         With ``lit_spans``: those spans, and the block update's lit and ambient
         rows, on 32-bit lanes where every plane's values are bounded
         (:func:`.lit.lit_span_lanes`; a switch, on by default; same planes).
+    fill_spans : bool
+        With ``vector_pack``: spans of at least ``FILL_MIN_SPAN`` pixels of the
+        z+stencil pass with arithmetic ops and of the depth-only pass run the
+        out-of-line loops of :mod:`.fill` (a switch, on by default; same planes).
+    zpass_spans : bool
+        With ``block_update``: the row spans of partly covered tiles whose depth
+        bounds prove the z test passes run the block update's loop too
+        (``TILE_ZPASS_SPAN``, :mod:`.tiles`; a switch, on by default; same planes).
     prefetch_planes : bool
         Prefetch the plane rows of the small triangle ``PREFETCH_DISTANCE`` entries
         ahead (:mod:`.prefetch`; a hint: a switch, on by default; same planes).
@@ -809,7 +831,7 @@ def render_bands(
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
                     cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
-                    (lit_spans, lit_lanes), tb, runs,
+                    (lit_spans, lit_lanes, fill_spans, zpass_spans), tb, runs,
                     spans, bw,
                     tex,
                 )

@@ -21,6 +21,12 @@ gets a class:
   (kernels/blocks.py), the stencil update, colour and z write of a passing fragment
   only.  Heidmann's volume faces in front of the scene and the lit pass's visible
   faces take it.
+* ``TILE_ZPASS_SPAN``: not fully covered, but the depth bounds prove the z test
+  passes as for ``TILE_ZPASS`` (asked for with ``zspan``): the triangle's row spans
+  in the tile run the block update's loop.  The bounds hold for the triangle's own
+  pixels in the tile as for all of them: the plane's extremes over the rectangle
+  bound every depth inside it.  The diagonal of a full-screen quad and the tiles
+  along a shadow face's edges take it (without it, the z-tested span loop).
 * ``TILE_PARTIAL``: everything else, rasterized as before.
 
 Exactness (docs/numeric_model.md, "Work skipping"): a fragment's depth is
@@ -54,6 +60,7 @@ TILE_W = 1 << TILE_SHIFT  # columns per tile
 TILE_H_SHIFT = 5
 TILE_H = 1 << TILE_H_SHIFT  # rows per tile (bands are at least this tall, batch.py)
 TILE_SKIP, TILE_PARTIAL, TILE_FULL, TILE_ZPASS = 0, 1, 2, 3  # ZPASS: full, z passes too
+TILE_ZPASS_SPAN = 4  # partly covered, z passes everywhere in it (zpass_spans)
 # Triangles with fewer pixels than this in a band are not classified tile by tile:
 # the corner tests would cost more than they save (the result is the same).
 TILE_MIN_PIXELS = 512
@@ -92,12 +99,15 @@ def scan_tile(zbuf, tx, y_lo, y_hi, tb, i):
     """Exact depth bounds of tile column ``tx`` over rows ``[y_lo, y_hi]`` into ``tb[i]``."""
     x0 = tx << TILE_SHIFT
     x1 = min(x0 + TILE_W, zbuf.shape[1]) - 1
-    lo = np.int64(zbuf[y_lo, x0])
+    # On the int32 values themselves, indexed in place: vpminsd / vpmaxsd on eight
+    # lanes (AVX2 has no packed int64 min or max) and no row view (whose reference
+    # count costs two atomic updates per row).
+    lo = zbuf[y_lo, x0]
     hi = lo
     for y in range(y_lo, y_hi + 1):
-        row = zbuf[y]
+        uy = np.uintp(y)
         for x in range(x0, x1 + 1):
-            v = np.int64(row[np.uintp(x)])
+            v = zbuf[uy, np.uintp(x)]
             lo = min(lo, v)
             hi = max(hi, v)
     tb[i, TB_VALID] = TB_EXACT
@@ -132,7 +142,7 @@ def z_passes_everywhere(zfunc, zlo, zhi, blo, bhi):
 
 @callee
 def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim, st, zbuf,
-                   tb, runs, skip, cover, merge, zpass, work):
+                   tb, runs, skip, cover, merge, zpass, zspan, work):
     """Classify the tiles of triangle ``t``'s rectangle in one tile row of a band;
     write the runs of adjacent non-skipped tiles of one class into ``runs``.
 
@@ -155,7 +165,8 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
     tb : ndarray, shape (n, TB_SIZE), int64
         The band's tile bounds (TB_*), filled in on first use.
     runs : ndarray, shape (ntiles, 3), int64
-        Output: ``(x first, x last, TILE_ZPASS, TILE_FULL or TILE_PARTIAL)`` per run.
+        Output: ``(x first, x last, class)`` per run: TILE_ZPASS, TILE_ZPASS_SPAN,
+        TILE_FULL or TILE_PARTIAL.
     skip, cover : bool
         Whether to test depth bounds (the caller has checked that the z test is on
         and z failure is a no-op) and whether to test full coverage.
@@ -168,6 +179,11 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
         Also test whether fully covered tiles pass the z test everywhere
         (``TILE_ZPASS``; the caller has checked that the z test is on, that ``cover``
         is set and that the state has a z-passed row loop).
+    zspan : bool
+        With ``zpass``: tiles not fully covered whose bounds prove the same get
+        ``TILE_ZPASS_SPAN`` (counted in no work counter: the class changes which
+        loop runs, not the work); runs of z-passed tiles of both classes merge into
+        one ``TILE_ZPASS_SPAN`` run (its rows clip to the row's span).
     work : ndarray, shape (WORK_SIZE,), int64
         Work counters of this band.
 
@@ -229,16 +245,21 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
             if passes:
                 cls = TILE_ZPASS
                 work[WORK_BLOCKS_Z_PASSED] += 1
+        elif cls == TILE_PARTIAL and passes and zspan:
+            cls = TILE_ZPASS_SPAN
         if cls == TILE_SKIP:
             continue
         prev = runs[nruns - 1, 2] if nruns > 0 else TILE_SKIP
-        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and (prev == cls or (
-                merge and prev != TILE_ZPASS and cls != TILE_ZPASS)):
+        zp = cls == TILE_ZPASS or cls == TILE_ZPASS_SPAN
+        zp_prev = prev == TILE_ZPASS or prev == TILE_ZPASS_SPAN
+        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and (prev == cls or (zp and zp_prev) or (
+                merge and not zp_prev and not zp)):
             # Span rows solve their edges once per row anyway: one long run (a long
-            # vectorized loop) beats a run per class; it is full only if all tiles are.
+            # vectorized loop) beats a run per class; it is full only if all tiles are
+            # (z-passed runs of both kinds: a z-passed run clipped to the row's span).
             runs[nruns - 1, 1] = cx1
             if cls != prev:
-                runs[nruns - 1, 2] = TILE_PARTIAL
+                runs[nruns - 1, 2] = TILE_ZPASS_SPAN if zp else TILE_PARTIAL
         else:
             runs[nruns, 0] = cx0
             runs[nruns, 1] = cx1

@@ -159,6 +159,18 @@ class CommandBatch:
         tests, clamps without floor, int32 compares and selects by masks) where
         every plane's values over the span are bounded so that those forms give the
         same values; on by default, the same planes either way.
+    fill_spans : bool
+        With ``vector_pack``: row spans of at least 16 pixels of the z+stencil
+        pass with an arithmetic stencil op and of the depth-only pass run span
+        loops compiled on their own, on 32-bit lanes (vgxsim/kernels/fill.py: in
+        the band kernel their invariants are spilled and reloaded per vector); on
+        by default, the same planes either way.
+    zpass_spans : bool
+        With ``block_update``: in tiles only partly covered by a triangle whose
+        depth bounds prove that its z test passes everywhere there, the triangle's
+        row spans run the block update's loop as well (kernels/tiles.py
+        TILE_ZPASS_SPAN: the diagonal of a full-screen quad, the tiles along a
+        shadow face's edges); on by default, the same planes and work counters.
     band_records : bool
         Before a flush of many triangles (``GATHER_MIN``; at most ``GATHER_MAX``
         binned entries, which bounds the copy's memory) in several bands, copy
@@ -206,6 +218,8 @@ class CommandBatch:
     block_update = True
     lit_spans = True
     lit_lanes = True
+    fill_spans = True
+    zpass_spans = True
     band_records = True
     scatter_bins = True
     prefetch_planes = True
@@ -747,6 +761,7 @@ class CommandBatch:
             front, back, z, st, self.edge_mode, self.general_only,
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
             self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
+            self.fill_spans, self.zpass_spans,
             self.prefetch_planes, self.borrow_arrays, work,
             (self.t_tex, *tex_table),
         )

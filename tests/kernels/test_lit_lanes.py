@@ -33,6 +33,7 @@ from vgxsim.kernels.lit import (
     lit_span_lanes,
 )
 from vgxsim.kernels.render import _alpha_span
+from vgxsim.state.codes import Z24_MASK
 
 W, H = 160, 96
 
@@ -81,8 +82,8 @@ def _rows(p, fz, zw, st, ad, wms, zbuf0, sten0, cbuf0, lanes):
             taken += 1
             alpha_span_lanes(uy, xl, xr, p[r, 0], p[r, 1], p[r, 10], zmin, zmax, p[r, 2],
                              p[r, 3], p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9], lt,
-                             eq, gt, zw[r], st[r], slt, seq, sgt, smask, sref, wm, cbuf, zbuf,
-                             sten)
+                             eq, gt, zw[r], st[r], slt, seq, sgt, smask, sref, wm, Z24_MASK,
+                             cbuf, zbuf, sten)
         elif ad[r] == 2:
             _alpha_span(uy, xl, xr, p[r, 0], p[r, 1], p[r, 10], zmin, zmax, p[r, 2], p[r, 3],
                         p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9], lt, eq, gt, zw[r],
@@ -92,8 +93,8 @@ def _rows(p, fz, zw, st, ad, wms, zbuf0, sten0, cbuf0, lanes):
             taken += 1
             lit_span_lanes(uy, xl, xr, p[r, 0], p[r, 1], p[r, 10], zmin, zmax, p[r, 2],
                            p[r, 3], p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9], lt, eq,
-                           gt, zw[r], st[r], slt, seq, sgt, smask, sref, ad[r] == 1, wm, cbuf, zbuf,
-                           sten)
+                           gt, zw[r], st[r], slt, seq, sgt, smask, sref, ad[r] == 1, wm,
+                           Z24_MASK, cbuf, zbuf, sten)
         else:
             lit_span(uy, xl, xr, p[r, 0], p[r, 1], p[r, 10], zmin, zmax, p[r, 2], p[r, 3],
                      p[r, 4], p[r, 5], p[r, 6], p[r, 7], p[r, 8], p[r, 9], lt, eq, gt, zw[r],
