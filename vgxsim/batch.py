@@ -22,9 +22,11 @@ from vgxsim.kernels.render import (
     gather_band_records,
     lean_fits,
     render_bands,
+    render_bands_borrowed,
     render_bands_lean,
+    render_bands_lean_borrowed,
 )
-from vgxsim.kernels.setup import setup_triangles_states
+from vgxsim.kernels.setup import setup_triangles_borrowed, setup_triangles_states
 from vgxsim.kernels.texture import setup_texture_planes
 from vgxsim.state.codes import (
     CLEAR_COLOUR,
@@ -467,19 +469,22 @@ class CommandBatch:
         if nthreads > 1 and nt >= PARALLEL_SETUP:
             cuts = np.linspace(0, nt, nthreads + 1).astype(np.int64)
             pool = threads.pool(nthreads)
-            futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, tris[a:b],
+            futures = [pool.submit(self._setup_kernel(), xf, yf, zw, colv, tris[a:b],
                                    src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
-                                   *out, start + a, self.borrow_arrays)
+                                   *out, start + a)
                        for a, b in zip(cuts[:-1], cuts[1:], strict=True) if b > a]
             for f in futures:
                 f.result()
             self.ntris = start + nt
         else:
-            self.ntris = setup_triangles_states(xf, yf, zw, colv, tris, src, flatv, idx, culls,
-                                                flat, want_colour, *out, start,
-                                                self.borrow_arrays)
+            self.ntris = self._setup_kernel()(xf, yf, zw, colv, tris, src, flatv, idx, culls,
+                                              flat, want_colour, *out, start)
         self._texture_planes(xf, yf, tex, tris, start)
         return start
+
+    def _setup_kernel(self):
+        """The set-up kernel: on borrowed arrays (``borrow_arrays``) or plain ones."""
+        return setup_triangles_borrowed if self.borrow_arrays else setup_triangles_states
 
     def _texture_planes(self, xf, yf, tex, tris, start) -> None:
         """Texture-coordinate planes of the triangles just set up at ``start``."""
@@ -617,14 +622,14 @@ class CommandBatch:
         out = self._records()
         cuts = _cuts(used, nthreads if par else 1)
         if len(cuts) <= 1:
-            setup_triangles_states(xf, yf, zw, colv, rec_tris, src, flatv, idx, culls, flat,
-                                   want_colour, *out, start, self.borrow_arrays)
+            self._setup_kernel()(xf, yf, zw, colv, rec_tris, src, flatv, idx, culls, flat,
+                                 want_colour, *out, start)
         else:
             # Every record owns its slot, so chunks set up in parallel, order unchanged.
             pool = threads.pool(nthreads)
-            futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, rec_tris[a:b],
+            futures = [pool.submit(self._setup_kernel(), xf, yf, zw, colv, rec_tris[a:b],
                                    src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
-                                   *out, start + a, self.borrow_arrays) for a, b in cuts]
+                                   *out, start + a) for a, b in cuts]
             for f in futures:
                 f.result()
         self.ntris = end
@@ -747,16 +752,19 @@ class CommandBatch:
             front, back, z, st, self.edge_mode, self.general_only,
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
             self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
-            self.prefetch_planes, self.borrow_arrays, work,
+            self.prefetch_planes, work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
-        kernel = render_bands
+        lean = False
         if self.lean_kernel:
             used = np.zeros(len(derived), bool)  # the states triangles use
             used[self.t_state[:self.ntris]] = True
-            if lean_fits(derived[used], self.nruns, self.edge_mode, self.general_only):
-                kernel = render_bands_lean
+            lean = lean_fits(derived[used], self.nruns, self.edge_mode, self.general_only)
+        if self.borrow_arrays:
+            kernel = render_bands_lean_borrowed if lean else render_bands_borrowed
+        else:
+            kernel = render_bands_lean if lean else render_bands
         if nthreads == 1:
             kernel(0, 1, *args)
         else:
