@@ -186,11 +186,11 @@ class CommandBatch:
         a full window does not fit the cache, and each small triangle's first z
         and colour reads missed); on by default, a hint that changes nothing drawn.
     borrow_arrays : bool
-        The band kernel works on views of its arrays that carry no reference count
-        (vgxsim/kernels/borrow.py): the array arguments of the helpers it inlines
-        per triangle cost no atomic count updates; set-up
-        (kernels/setup.py setup_triangles_states) likewise; on by default, a switch
-        that changes nothing drawn.
+        The band kernel and set-up take their arrays borrowed
+        (vgxsim/kernels/borrow.py: a type without a counted meminfo, through
+        render_bands_borrowed and setup_triangles_borrowed): the array arguments of
+        the helpers they inline per triangle cost no reference-count calls; on by
+        default, a switch that changes nothing drawn.
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
