@@ -21,9 +21,9 @@ and colour are the span loops' expressions (``za = z0 + dzdy*(y - y0)`` then
 round_z / pack_rgba (the int64 forms, equal to vector_pack's int32 ones), and the
 same comparisons and writes, except that a pixel whose test fails is written back
 unchanged (a band is one thread's, so that changes nothing).  A pixel is visited
-once per triangle, so the order inside a triangle changes nothing.  Modes: z only, z + stencil (table and saturating add),
-and colour with the z test on and a replace or add blend, stencil test or not;
-anything else takes the span path.
+once per triangle, so the order inside a triangle changes nothing.  Modes: z only,
+z + stencil (table and saturating add), and colour with the z test on and a
+replace or add blend, stencil test or not; anything else takes the span path.
 """
 
 from __future__ import annotations
