@@ -6,24 +6,21 @@ three stepped edges (kernels/spans.py: two divisions each) and, per row, a span
 solve and the entry of a span loop built to vectorize over long spans (its
 preamble and remainder handling cost more than two pixels of work).  For a
 triangle at most ``NARROW`` pixels wide whose tiles are not classified, this path
-instead walks the pixel centres of each row of the box once, carrying the three
-edge values by exact integer steps (``A`` per column, the value at the row's first
-column from ``A*x + B*y + K``: the same int64 sums as kernels/raster.py covers)
-to find the row's covered run without a branch, and runs the fragment operations
-of the state's span loop over that run, scalar, with the tests' outcomes chosen
-by selects rather than branches (a z test's outcome is data: a mispredicted
-branch on it cost more than the pixel's work).
+instead walks the pixel centres of the box once, carrying the three edge values
+by exact integer steps (``A`` per column, the value at the row's first column from
+``A*x + B*y + K``: the same int64 sums as kernels/raster.py covers), and runs the
+fragment operations of the state's span loop on the covered ones, scalar.
 
 Exactness: the covered pixels are those of the edge-function test, which the span
 rasterizer matches exactly (tests/kernels/test_spans.py); each fragment's depth
 and colour are the span loops' expressions (``za = z0 + dzdy*(y - y0)`` then
 ``za + dzdx*(x - x0)``, colour_row then ``c + dc*(x - x0)``), rounded by the same
 round_z / pack_rgba (the int64 forms, equal to vector_pack's int32 ones), and the
-same comparisons and writes, except that a pixel whose test fails is written back
-unchanged (a band is one thread's, so that changes nothing).  A pixel is visited
-once per triangle, so the order inside a triangle changes nothing.  Modes: z only,
-z + stencil (table and saturating add), and colour with the z test on and a
-replace or add blend, stencil test or not; anything else takes the span path.
+same comparisons and writes; writes the span loops make with unchanged values
+are left out.  A pixel is visited once per triangle, so the order inside a
+triangle changes nothing.  Modes: z only, z + stencil (table and saturating add),
+and colour with the z test on and a replace or add blend, stencil test or not;
+anything else takes the span path.
 """
 
 from __future__ import annotations
@@ -109,62 +106,45 @@ def small_triangle(t, xlo, xhi, ylo, yhi, t_edge, t_z, t_zlim, t_col, st, dv, ta
     cbuf = back if st[S_DRAW_BACK] else front
     tested = 0
     for y in range(ylo, yhi + 1):
-        # The row's covered columns: one run (the triangle is convex), found by
-        # stepping the three edge values over the box without a branch.
         e0 = a0 * xlo + b0 * y + k0
         e1 = a1 * xlo + b1 * y + k1
         e2 = a2 * xlo + b2 * y + k2
-        sl = xhi + 1
-        sr = xlo - 1
+        uy = np.uintp(y)
+        za = z0 + dzdy * (y - y0)
+        ra = ga = ba = aa = rdx = gdx = bdx = adx = 0.0
+        if mode == MODE_COLOUR:
+            ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
         for x in range(xlo, xhi + 1):
-            inside = (e0 >= 0) & (e1 >= 0) & (e2 >= 0)
-            sl = min(sl, x) if inside else sl
-            sr = x if inside else sr
+            inside = e0 >= 0 and e1 >= 0 and e2 >= 0
             e0 += a0
             e1 += a1
             e2 += a2
-        if sl > sr:
-            continue
-        tested += sr - sl + 1
-        uy = np.uintp(y)
-        za = z0 + dzdy * (y - y0)
-        # Every covered pixel is written, unchanged where a test fails (a select,
-        # not a branch on the z test: its outcome is data, which a predictor
-        # misses); a band is one thread's, so a rewritten value is no change.
-        if mode == MODE_COLOUR:
-            ra, ga, ba, aa, rdx, gdx, bdx, adx = colour_row(t_col, t, y - y0)
-            for x in range(sl, sr + 1):
-                ux = np.uintp(x)
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zold = np.int64(zbuf[uy, ux])
-                ok = cmp_select(lt, eq, gt, zi, zold)
-                if stest:
-                    ok = ok & cmp_select(slt, seq, sgt, sref, np.int64(sten[uy, ux]) & smask)
+            if not inside:
+                continue
+            tested += 1
+            ux = np.uintp(x)
+            zi = round_z(za + dzdx * (x - x0), zmin, zmax)
+            zpass = cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux]))
+            if mode == MODE_COLOUR:
+                if stest and not cmp_select(slt, seq, sgt, sref,
+                                            np.int64(sten[uy, ux]) & smask):
+                    continue
+                if not zpass:
+                    continue
                 if zwrite:
-                    zbuf[uy, ux] = wrap_z24(zi) if ok else zold
+                    zbuf[uy, ux] = wrap_z24(zi)
                 dx = x - x0
                 src = pack_rgba(ra + rdx * dx, ga + gdx * dx, ba + bdx * dx, aa + adx * dx)
                 dst = np.int64(cbuf[uy, ux])
                 out = add_sat(src, dst) if add else src
-                cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
-        elif mode == MODE_ZONLY:
-            for x in range(sl, sr + 1):
-                ux = np.uintp(x)
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zold = np.int64(zbuf[uy, ux])
-                zbuf[uy, ux] = wrap_z24(zi) if cmp_select(lt, eq, gt, zi, zold) else zold
-        elif mode == MODE_ZSTENCIL_ADD:
-            for x in range(sl, sr + 1):
-                ux = np.uintp(x)
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zpass = cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux]))
+                cbuf[uy, ux] = (dst & keep) | (out & wm)
+            elif mode == MODE_ZONLY:
+                if zpass:
+                    zbuf[uy, ux] = wrap_z24(zi)
+            elif mode == MODE_ZSTENCIL_ADD:
                 sv = np.int64(sten[uy, ux]) + (dpass if zpass else dfail)
                 sten[uy, ux] = min(max(sv, 0), smax)
-        else:  # MODE_ZSTENCIL
-            for x in range(sl, sr + 1):
-                ux = np.uintp(x)
-                zi = round_z(za + dzdx * (x - x0), zmin, zmax)
-                zpass = cmp_select(lt, eq, gt, zi, np.int64(zbuf[uy, ux]))
+            else:  # MODE_ZSTENCIL
                 sv = sten[uy, ux]
                 sten[uy, ux] = tab[0, sv] if zpass else tab[1, sv]
     return tested
