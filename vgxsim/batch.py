@@ -594,7 +594,6 @@ class CommandBatch:
         znear, zfar = float(depth[0]), float(depth[1])
         gx, gy = guard
         sub = bool(rs.subpixel)
-        clip_v = self._scratch("clip_v", nv, (4,), np.float64)
         code = self._scratch("code", nv, (), np.uint16)
         user = np.ascontiguousarray(user_planes, dtype=np.float64).reshape(-1, 4)
         xf = self._scratch("xf", nv)
@@ -603,14 +602,14 @@ class CommandBatch:
         nthreads = threads.get_threads()
         par = nthreads > 1 and nt >= PARALLEL_FRONT
         _run_chunks(par, nthreads, front_vertices, _cuts(nv, nthreads if par else 1), obj, mvp,
-                    gx, gy, user, l, r, b, t, znear, zfar, sub, clip_v, code, xf, yf, zw)
+                    gx, gy, user, l, r, b, t, znear, zfar, sub, code, xf, yf, zw)
         slots = front_slots(code, tris)
         used = int(slots[nt])
         if used == nt and not (slots[1:] - slots[:-1] - 1).any():
             rec_tris, rec_src = tris, None  # the usual case: one record per triangle
         else:
             xf, yf, zw, attrv, rec_tris, rec_src = front_assemble(
-                clip_v, code, xf, yf, zw, attrv, tris, slots, gx, gy, user, l, r, b, t, znear,
+                obj, mvp, code, xf, yf, zw, attrv, tris, slots, gx, gy, user, l, r, b, t, znear,
                 zfar, sub)
             idx = np.ascontiguousarray(idx[rec_src])
             culls = np.ascontiguousarray(culls[rec_src])
