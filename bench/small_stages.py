@@ -7,10 +7,12 @@ Draws bench/scenes.py small_triangles (Context.draw_arrays: one call of N triang
 then a flush) and reports, per stage function, the median over ``rounds`` of the
 process CPU time spent in it (cProfile's own time, so nested stages do not count
 twice), in ns per triangle.  The stages are the functions of the array path:
-as_homogeneous / transform_points / clip_triangles / project_snap (front end),
-setup_triangles_states (kernels/setup.py), bin_primitives and gather_band_records
-(binning), render_bands (the band kernel).  Process CPU time, not wall time: the
-machine this runs on is usually shared, and CPU time is the steadier figure.
+as_homogeneous / transform_points / clip_triangles / project_snap, or front_vertices
+(front end), setup_triangles_states (kernels/setup.py; setup_triangles_borrowed with
+CommandBatch.borrow_arrays), bin_primitives, scatter_records and gather_band_records
+(binning), render_bands (the band kernel; render_bands_borrowed likewise).  Process
+CPU time, not wall time: the machine this runs on is usually shared, and CPU time is
+the steadier figure.
 ``--ab SWITCH`` runs each round twice, with the switch SWITCH (a CommandBatch
 attribute, or a dotted module constant such as vgxsim.geometry.pipeline.FUSED_FRONT) on and
 then off (alternating, so load drifts hit both alike), and reports both, with the

@@ -51,16 +51,46 @@ from .clip import (
     vertex_outcode,
 )
 from .lighting import _shade_vertex
-from .options import jit
+from .options import inline, jit
 
 HUGE = 1e300  # clip coordinates beyond this are rescaled (vgxsim.geometry.pipeline._tame)
 CLIP_SLOTS = MAX_POLY - 2  # set-up records reserved for a triangle that needs clipping
 
 
+@inline
+def clip_position(p0, p1, p2, p3, m):
+    """Object point ``(p0, p1, p2, p3)`` to clip space by ``m`` (the MVP's 16 entries,
+    row-major): transform_points' order, ((p0*m0j + p1*m1j) + p2*m2j) + p3*m3j, then
+    the same point divided by its largest magnitude where that exceeds ``HUGE``
+    (geometry.pipeline._tame, row by row: keeps the clipper's plane distances
+    finite).  One helper for :func:`front_vertices` and :func:`front_assemble`, which
+    computes it again for the vertices of the triangles it clips rather than have
+    every vertex store its clip position (32 bytes a vertex written, read by none
+    but those)."""
+    cx = ((p0 * m[0] + p1 * m[4]) + p2 * m[8]) + p3 * m[12]
+    cy = ((p0 * m[1] + p1 * m[5]) + p2 * m[9]) + p3 * m[13]
+    cz = ((p0 * m[2] + p1 * m[6]) + p2 * m[10]) + p3 * m[14]
+    cw = ((p0 * m[3] + p1 * m[7]) + p2 * m[11]) + p3 * m[15]
+    big = max(max(abs(cx), abs(cy)), max(abs(cz), abs(cw)))
+    if big > HUGE and (np.isfinite(cx) and np.isfinite(cy) and np.isfinite(cz)
+                       and np.isfinite(cw)):
+        cx, cy, cz, cw = cx / big, cy / big, cz / big, cw / big
+    return cx, cy, cz, cw
+
+
+@inline
+def mvp_entries(mvp):
+    """The 16 entries of a (4, 4) matrix, row-major, as scalars (a tuple: no array
+    reaches :func:`clip_position`)."""
+    return (mvp[0, 0], mvp[0, 1], mvp[0, 2], mvp[0, 3], mvp[1, 0], mvp[1, 1], mvp[1, 2],
+            mvp[1, 3], mvp[2, 0], mvp[2, 1], mvp[2, 2], mvp[2, 3], mvp[3, 0], mvp[3, 1],
+            mvp[3, 2], mvp[3, 3])
+
+
 @jit
 def front_vertices(obj, mvp, gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, subpixel,
-                   clip_v, code, xf, yf, zw, v0, v1):
-    """Vertices ``v0 .. v1 - 1``: clip position, outcode and snapped window position.
+                   code, xf, yf, zw, v0, v1):
+    """Vertices ``v0 .. v1 - 1``: outcode and snapped window position.
 
     Parameters
     ----------
@@ -74,7 +104,7 @@ def front_vertices(obj, mvp, gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, 
         User clip planes in clip space (clipplane(3G); (0, 4) when none is on).
     vp_l, vp_r, vp_b, vp_t : int; znear, zfar : float; subpixel : bool
         As for :func:`~.clip.project_snap`.
-    clip_v : ndarray, shape (Nv, 4), float64; code : ndarray, shape (Nv,), uint16
+    code : ndarray, shape (Nv,), uint16
     xf, yf : ndarray, shape (Nv,), int64; zw : ndarray, shape (Nv,), float64
         Outputs, written in rows ``v0 .. v1 - 1``.
     v0, v1 : int
@@ -84,25 +114,11 @@ def front_vertices(obj, mvp, gx, gy, user, vp_l, vp_r, vp_b, vp_t, znear, zfar, 
     hy = (vp_t - vp_b + 1) / 2.0
     hz = (zfar - znear) / 2.0
     homogeneous = obj.shape[1] > 3
+    m = mvp_entries(mvp)
     for i in range(v0, v1):
-        # transform_points' order: ((p0*m0j + p1*m1j) + p2*m2j) + p3*m3j.
         # (Nv, 3) rows are (x, y, z, 1): 1.0 * m is m, the value of a w column of ones.
-        p0, p1, p2 = obj[i, 0], obj[i, 1], obj[i, 2]
         p3 = obj[i, 3] if homogeneous else 1.0
-        cx = ((p0 * mvp[0, 0] + p1 * mvp[1, 0]) + p2 * mvp[2, 0]) + p3 * mvp[3, 0]
-        cy = ((p0 * mvp[0, 1] + p1 * mvp[1, 1]) + p2 * mvp[2, 1]) + p3 * mvp[3, 1]
-        cz = ((p0 * mvp[0, 2] + p1 * mvp[1, 2]) + p2 * mvp[2, 2]) + p3 * mvp[3, 2]
-        cw = ((p0 * mvp[0, 3] + p1 * mvp[1, 3]) + p2 * mvp[2, 3]) + p3 * mvp[3, 3]
-        big = max(max(abs(cx), abs(cy)), max(abs(cz), abs(cw)))
-        if big > HUGE and (np.isfinite(cx) and np.isfinite(cy) and np.isfinite(cz)
-                           and np.isfinite(cw)):
-            # The same point divided by its largest magnitude (geometry.pipeline._tame,
-            # row by row): keeps the clipper's plane distances finite.
-            cx, cy, cz, cw = cx / big, cy / big, cz / big, cw / big
-        clip_v[i, 0] = cx
-        clip_v[i, 1] = cy
-        clip_v[i, 2] = cz
-        clip_v[i, 3] = cw
+        cx, cy, cz, cw = clip_position(obj[i, 0], obj[i, 1], obj[i, 2], p3, m)
         code[i] = vertex_outcode(cx, cy, cz, cw, gx, gy, user)
         xf[i], yf[i], zw[i] = project_vertex(cx, cy, cz, cw, vp_l, vp_b, hx, hy, hz, znear,
                                              subpixel)
@@ -138,15 +154,18 @@ def front_slots(code, tris):
 
 
 @jit
-def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, user, vp_l, vp_r,
+def front_assemble(obj, mvp, code, xf, yf, zw, attr, tris, slots, gx, gy, user, vp_l, vp_r,
                    vp_b, vp_t, znear, zfar, subpixel):
     """The triangles set-up reads, one per record (see the module docstring), when
     some triangle is clipped or rejected: the clipped ones' vertices appended.
 
     Parameters
     ----------
-    clip_v, code, xf, yf, zw : ndarray
-        The vertices after :func:`front_vertices`, shapes (Nv, 4), (Nv,).
+    obj, mvp : ndarray
+        As for :func:`front_vertices` (clip positions are computed again for the
+        vertices of clipped triangles).
+    code, xf, yf, zw : ndarray, shape (Nv,)
+        The vertices after :func:`front_vertices`.
     attr : ndarray, shape (Nv, K), float64
         Vertex colour in [0, 1] (K = 4), or K = 0 when colour is not written.
     tris : ndarray, shape (Nt, 3), int64
@@ -169,6 +188,8 @@ def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, user, vp
     nv = xf.shape[0]
     k = attr.shape[1]
     nrec = slots[nt]
+    homogeneous = obj.shape[1] > 3
+    m = mvp_entries(mvp)
     nclip = 0
     for t in range(nt):
         if slots[t + 1] - slots[t] > 1:
@@ -201,8 +222,9 @@ def front_assemble(clip_v, code, xf, yf, zw, attr, tris, slots, gx, gy, user, vp
         elif used > 1:
             for j in range(3):
                 i = tris[t, j]
-                for q in range(4):
-                    v3[j, q] = clip_v[i, q]
+                p3 = obj[i, 3] if homogeneous else 1.0
+                v3[j, 0], v3[j, 1], v3[j, 2], v3[j, 3] = clip_position(
+                    obj[i, 0], obj[i, 1], obj[i, 2], p3, m)
                 for q in range(k):
                     a3[j, q] = attr[i, q]
             cv, ca, fan, _src = clip_triangles(v3, a3, one, gx, gy, user)

@@ -683,6 +683,85 @@ def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
                  front, back, zbuf, sten)
 
 
+@inline_ir
+def _bands_body(
+    tid, nthreads, starts, items, band_shift, height,
+    p_kind, p_ref,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state,
+    frags,
+    c_vals, c_state,
+    states, derived, tables,
+    front, back, zbuf, sten,
+    switches, work, tex,
+):
+    # The body of :func:`render_bands`, inlined into each entry point; ``frags``
+    # and ``switches`` are tuples (an inlined call of more than 30 arguments
+    # compiles to CALL_FUNCTION_EX, which Numba cannot inline).
+    f_xy, f_z, f_rgba, r_range, r_state = frags
+    (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
+     small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans,
+     prefetch_planes) = switches
+    band_h = 1 << band_shift
+    nbands = starts.shape[0] - 1
+    ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
+    # Tile bounds of one band: (band_h / TILE_H) tile rows of ntiles tiles.
+    tb_own = np.zeros((ntiles * max(1, band_h >> TILE_H_SHIFT), TB_SIZE), np.int64)
+    runs_own = np.zeros((ntiles, 3), np.int64)
+    spans_own = np.zeros((band_h, 2), np.int64)  # a triangle's row spans in one band
+    # Borrowed (kernels/borrow.py): no counted references in the inlined helpers;
+    # the scratch arrays are kept alive to the end (keep_alive below).
+    tb, runs, spans = borrow(tb_own), borrow(runs_own), borrow(spans_own)
+    for b in range(tid, nbands, nthreads):
+        y_lo = b * band_h
+        y_hi = min(y_lo + band_h, height) - 1
+        tb[:, TB_VALID] = TB_UNKNOWN  # bounds are found again in each band, on first use
+        bw = borrow(work[b])  # (views borrowed too: ``work`` outlives them)
+        # The state's rows, taken again only when the state changes (runs of
+        # primitives share a state).
+        cur = -1
+        st = borrow(states[0])
+        dv = borrow(derived[0])
+        tab = borrow(tables[0])
+        end = starts[b + 1]
+        for i in range(starts[b], end):
+            if prefetch_planes and i + PREFETCH_DISTANCE < end:
+                q = items[i + PREFETCH_DISTANCE]
+                if p_kind[q] == KIND_TRIANGLE:
+                    u = p_ref[q]
+                    prefetch_box(u, t_state[u], y_lo, y_hi, t_box, states, derived, front,
+                                 back, zbuf, sten)
+            p = items[i]
+            kind = p_kind[p]
+            ref = p_ref[p]
+            if kind == KIND_TRIANGLE:
+                s = t_state[ref]
+                if s != cur:
+                    cur = s
+                    st = borrow(states[s])
+                    dv = borrow(derived[s])
+                    tab = borrow(tables[s])
+                _triangle_rows(
+                    ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
+                    st, dv, tab,
+                    front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
+                    cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
+                    (lit_spans, lit_lanes, fill_spans, zpass_spans), tb, runs,
+                    spans, bw,
+                    tex,
+                )
+            elif kind == KIND_FRAGMENTS:
+                if _FULL:  # (lean_fits: a lean batch has no fragment runs)
+                    s = r_state[ref]
+                    _fragment_run(ref, y_lo, y_hi, f_xy, f_z, f_rgba, r_range,
+                                  states[s], derived[s], tables[s],
+                                  front, back, zbuf, sten, tb, bw)
+            else:
+                s = c_state[ref]
+                _clear_rows(ref, y_lo, y_hi, c_vals, states[s], derived[s],
+                            front, back, zbuf, sten, tb)
+    keep_alive(tb_own, runs_own, spans_own)
+
+
 @jit
 def render_bands(
     tid, nthreads, starts, items, band_shift, height,
@@ -694,7 +773,7 @@ def render_bands(
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
     small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
-    borrow_arrays, work, tex,
+    work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -767,85 +846,57 @@ def render_bands(
     prefetch_planes : bool
         Prefetch the plane rows of the small triangle ``PREFETCH_DISTANCE`` entries
         ahead (:mod:`.prefetch`; a hint: a switch, on by default; same planes).
-    borrow_arrays : bool
-        Work on views of the arrays without reference counting (:mod:`.borrow`:
-        the inlined helpers' array bindings cost no atomic updates; a switch, on by
-        default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
         (t_tex (T, 3, 3) float64 texture-coordinate planes, info (K, X_SIZE) int64,
         env_colour (K, 4) float64, texels (N,) uint32): the texture stage
         (:mod:`.texture`, vgxsim.state.textures.pack_bindings).
+
+    The arrays may be plain or borrowed (:func:`render_bands_borrowed`).
     """
-    band_h = 1 << band_shift
-    nbands = starts.shape[0] - 1
-    ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
-    # Tile bounds of one band: (band_h / TILE_H) tile rows of ntiles tiles.
-    tb_own = np.zeros((ntiles * max(1, band_h >> TILE_H_SHIFT), TB_SIZE), np.int64)
-    runs_own = np.zeros((ntiles, 3), np.int64)
-    spans_own = np.zeros((band_h, 2), np.int64)  # a triangle's row spans in one band
-    tb, runs, spans = tb_own, runs_own, spans_own
-    if borrow_arrays:
-        # The caller holds the arguments for the whole call; the scratch arrays are
-        # kept alive to the end (keep_alive below).
-        tb, runs, spans = borrow(tb_own), borrow(runs_own), borrow(spans_own)
-        items, p_kind, p_ref = borrow(items), borrow(p_kind), borrow(p_ref)
-        t_edge, t_box, t_z = borrow(t_edge), borrow(t_box), borrow(t_z)
-        t_zlim, t_col, t_state = borrow(t_zlim), borrow(t_col), borrow(t_state)
-        states, derived, tables = borrow(states), borrow(derived), borrow(tables)
-        front, back, zbuf, sten = borrow(front), borrow(back), borrow(zbuf), borrow(sten)
-        work = borrow(work)
-        tex = (borrow(tex[0]), borrow(tex[1]), borrow(tex[2]), borrow(tex[3]))
-    for b in range(tid, nbands, nthreads):
-        y_lo = b * band_h
-        y_hi = min(y_lo + band_h, height) - 1
-        tb[:, TB_VALID] = TB_UNKNOWN  # bounds are found again in each band, on first use
-        bw = work[b]
-        # The state's rows, taken again only when the state changes (a view costs
-        # reference-count updates; runs of primitives share a state).
-        cur = -1
-        st = states[0]
-        dv = derived[0]
-        tab = tables[0]
-        end = starts[b + 1]
-        for i in range(starts[b], end):
-            if prefetch_planes and i + PREFETCH_DISTANCE < end:
-                q = items[i + PREFETCH_DISTANCE]
-                if p_kind[q] == KIND_TRIANGLE:
-                    u = p_ref[q]
-                    prefetch_box(u, t_state[u], y_lo, y_hi, t_box, states, derived, front,
-                                 back, zbuf, sten)
-            p = items[i]
-            kind = p_kind[p]
-            ref = p_ref[p]
-            if kind == KIND_TRIANGLE:
-                s = t_state[ref]
-                if s != cur:
-                    cur = s
-                    st = states[s]
-                    dv = derived[s]
-                    tab = tables[s]
-                _triangle_rows(
-                    ref, y_lo, y_hi, t_edge, t_box, t_z, t_zlim, t_col,
-                    st, dv, tab,
-                    front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
-                    cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
-                    (lit_spans, lit_lanes, fill_spans, zpass_spans), tb, runs,
-                    spans, bw,
-                    tex,
-                )
-            elif kind == KIND_FRAGMENTS:
-                if _FULL:  # (lean_fits: a lean batch has no fragment runs)
-                    s = r_state[ref]
-                    _fragment_run(ref, y_lo, y_hi, f_xy, f_z, f_rgba, r_range,
-                                  states[s], derived[s], tables[s],
-                                  front, back, zbuf, sten, tb, bw)
-            else:
-                s = c_state[ref]
-                _clear_rows(ref, y_lo, y_hi, c_vals, states[s], derived[s],
-                            front, back, zbuf, sten, tb)
-    keep_alive(tb_own, runs_own, spans_own)
+    _bands_body(
+        tid, nthreads, starts, items, band_shift, height, p_kind, p_ref, t_edge, t_box, t_z,
+        t_zlim, t_col, t_state, (f_xy, f_z, f_rgba, r_range, r_state), c_vals, c_state,
+        states, derived, tables, front, back, zbuf, sten,
+        (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans,
+         vector_pack, small_path, block_update, lit_spans, lit_lanes, fill_spans,
+         zpass_spans, prefetch_planes),
+        work, tex)
+
+
+@jit
+def render_bands_borrowed(
+    tid, nthreads, starts, items, band_shift, height,
+    p_kind, p_ref,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state,
+    f_xy, f_z, f_rgba, r_range, r_state,
+    c_vals, c_state,
+    states, derived, tables,
+    front, back, zbuf, sten,
+    edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
+    small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
+    work, tex,
+):
+    """:func:`render_bands` on borrowed arrays (kernels/borrow.py,
+    CommandBatch.borrow_arrays; the same arguments): the helpers it inlines per
+    triangle bind their array arguments without counted references.  The caller
+    holds every argument for the whole call.  (The body is inlined here, not
+    called: a call links the callee's code into this one's, and Numba optimizes
+    the linked module again: seconds of a cold start for the band kernel.)"""
+    _bands_body(
+        tid, nthreads, borrow(starts), borrow(items), band_shift, height,
+        borrow(p_kind), borrow(p_ref),
+        borrow(t_edge), borrow(t_box), borrow(t_z), borrow(t_zlim), borrow(t_col),
+        borrow(t_state),
+        (borrow(f_xy), borrow(f_z), borrow(f_rgba), borrow(r_range), borrow(r_state)),
+        borrow(c_vals), borrow(c_state),
+        borrow(states), borrow(derived), borrow(tables),
+        borrow(front), borrow(back), borrow(zbuf), borrow(sten),
+        (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans,
+         vector_pack, small_path, block_update, lit_spans, lit_lanes, fill_spans,
+         zpass_spans, prefetch_planes),
+        borrow(work), (borrow(tex[0]), borrow(tex[1]), borrow(tex[2]), borrow(tex[3])))
 
 
 def lean_fits(derived: np.ndarray, nruns: int, edge_mode: bool, general_only: bool) -> bool:
@@ -897,5 +948,10 @@ _LEAN_GLOBALS["_colour_span"] = inline_ir(_lean_copy(_colour_span, _LEAN_GLOBALS
                                                      "_colour_span_lean"))
 _LEAN_GLOBALS["_triangle_rows"] = inline_ir(_lean_copy(_triangle_rows, _LEAN_GLOBALS,
                                                        "_triangle_rows_lean"))
+_LEAN_GLOBALS["_bands_body"] = inline_ir(_lean_copy(_bands_body, _LEAN_GLOBALS,
+                                                    "_bands_body_lean"))
 #: :func:`render_bands` without the paths :func:`lean_fits` rules out (same arguments).
 render_bands_lean = jit(_lean_copy(render_bands, _LEAN_GLOBALS, "render_bands_lean"))
+#: :func:`render_bands_borrowed` calling :data:`render_bands_lean`.
+render_bands_lean_borrowed = jit(_lean_copy(render_bands_borrowed, _LEAN_GLOBALS,
+                                            "render_bands_lean_borrowed"))

@@ -133,27 +133,37 @@ def setup_triangles(
 @jit
 def setup_triangles_states(
     xf, yf, zw, col, tris, src, flat_col, states, culls, flat, want_colour,
-    t_edge, t_box, t_z, t_zlim, t_col, t_state, offset, borrow_arrays=False,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state, offset,
 ):
     """:func:`setup_triangles` with a state-table index and a cull mode per triangle
     (``states``, ``culls``: shape (Nt,), int64): one call sets up triangles drawn
     with different fragment state (the 1991 code changes stencil() before every
-    shadow face, nothing else).  ``borrow_arrays``: work on views without reference
-    counts (kernels/borrow.py; CommandBatch.borrow_arrays): the inlined
-    ``_setup_one`` binds its array arguments once a triangle, each binding an atomic
-    count update up and one down (a tenth of a flush of 10-pixel triangles' samples,
-    perf); the records are the same."""
-    if borrow_arrays:  # the caller holds every argument for the whole call
-        xf, yf, zw, col, tris = borrow(xf), borrow(yf), borrow(zw), borrow(col), borrow(tris)
-        src, flat_col, states, culls = borrow(src), borrow(flat_col), borrow(states), borrow(culls)
-        t_edge, t_box, t_z = borrow(t_edge), borrow(t_box), borrow(t_z)
-        t_zlim, t_col, t_state = borrow(t_zlim), borrow(t_col), borrow(t_state)
+    shadow face, nothing else).  Also compiled for borrowed arrays
+    (:func:`setup_triangles_borrowed`)."""
     n = offset
     for t in range(tris.shape[0]):
         _setup_one(xf, yf, zw, col, tris, src, flat_col, states[t], culls[t], flat,
                    want_colour, t_edge, t_box, t_z, t_zlim, t_col, t_state, t, n)
         n += 1
     return n
+
+
+@jit
+def setup_triangles_borrowed(
+    xf, yf, zw, col, tris, src, flat_col, states, culls, flat, want_colour,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state, offset,
+):
+    """:func:`setup_triangles_states` on borrowed arrays (kernels/borrow.py;
+    CommandBatch.borrow_arrays): the inlined ``_setup_one`` binds its array
+    arguments once a triangle, and on plain arrays each binding is a counted
+    reference (40 to 46 out-of-line calls a triangle in the loop's assembly); on
+    borrowed ones there is no counting at all.  The records are the same.  The
+    caller holds every argument for the whole call."""
+    return setup_triangles_states(
+        borrow(xf), borrow(yf), borrow(zw), borrow(col), borrow(tris), borrow(src),
+        borrow(flat_col), borrow(states), borrow(culls), flat, want_colour,
+        borrow(t_edge), borrow(t_box), borrow(t_z), borrow(t_zlim), borrow(t_col),
+        borrow(t_state), offset)
 
 
 @inline_ir

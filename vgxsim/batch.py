@@ -22,9 +22,11 @@ from vgxsim.kernels.render import (
     gather_band_records,
     lean_fits,
     render_bands,
+    render_bands_borrowed,
     render_bands_lean,
+    render_bands_lean_borrowed,
 )
-from vgxsim.kernels.setup import setup_triangles_states
+from vgxsim.kernels.setup import setup_triangles_borrowed, setup_triangles_states
 from vgxsim.kernels.texture import setup_texture_planes
 from vgxsim.state.codes import (
     CLEAR_COLOUR,
@@ -196,11 +198,11 @@ class CommandBatch:
         a full window does not fit the cache, and each small triangle's first z
         and colour reads missed); on by default, a hint that changes nothing drawn.
     borrow_arrays : bool
-        The band kernel works on views of its arrays that carry no reference count
-        (vgxsim/kernels/borrow.py): the array arguments of the helpers it inlines
-        per triangle cost no atomic count updates; set-up
-        (kernels/setup.py setup_triangles_states) likewise; on by default, a switch
-        that changes nothing drawn.
+        The band kernel and set-up take their arrays borrowed
+        (vgxsim/kernels/borrow.py: a type without a counted meminfo, through
+        render_bands_borrowed and setup_triangles_borrowed): the array arguments of
+        the helpers they inline per triangle cost no reference-count calls; on by
+        default, a switch that changes nothing drawn.
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -481,19 +483,22 @@ class CommandBatch:
         if nthreads > 1 and nt >= PARALLEL_SETUP:
             cuts = np.linspace(0, nt, nthreads + 1).astype(np.int64)
             pool = threads.pool(nthreads)
-            futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, tris[a:b],
+            futures = [pool.submit(self._setup_kernel(), xf, yf, zw, colv, tris[a:b],
                                    src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
-                                   *out, start + a, self.borrow_arrays)
+                                   *out, start + a)
                        for a, b in zip(cuts[:-1], cuts[1:], strict=True) if b > a]
             for f in futures:
                 f.result()
             self.ntris = start + nt
         else:
-            self.ntris = setup_triangles_states(xf, yf, zw, colv, tris, src, flatv, idx, culls,
-                                                flat, want_colour, *out, start,
-                                                self.borrow_arrays)
+            self.ntris = self._setup_kernel()(xf, yf, zw, colv, tris, src, flatv, idx, culls,
+                                              flat, want_colour, *out, start)
         self._texture_planes(xf, yf, tex, tris, start)
         return start
+
+    def _setup_kernel(self):
+        """The set-up kernel: on borrowed arrays (``borrow_arrays``) or plain ones."""
+        return setup_triangles_borrowed if self.borrow_arrays else setup_triangles_states
 
     def _texture_planes(self, xf, yf, tex, tris, start) -> None:
         """Texture-coordinate planes of the triangles just set up at ``start``."""
@@ -603,7 +608,6 @@ class CommandBatch:
         znear, zfar = float(depth[0]), float(depth[1])
         gx, gy = guard
         sub = bool(rs.subpixel)
-        clip_v = self._scratch("clip_v", nv, (4,), np.float64)
         code = self._scratch("code", nv, (), np.uint16)
         user = np.ascontiguousarray(user_planes, dtype=np.float64).reshape(-1, 4)
         xf = self._scratch("xf", nv)
@@ -612,14 +616,14 @@ class CommandBatch:
         nthreads = threads.get_threads()
         par = nthreads > 1 and nt >= PARALLEL_FRONT
         _run_chunks(par, nthreads, front_vertices, _cuts(nv, nthreads if par else 1), obj, mvp,
-                    gx, gy, user, l, r, b, t, znear, zfar, sub, clip_v, code, xf, yf, zw)
+                    gx, gy, user, l, r, b, t, znear, zfar, sub, code, xf, yf, zw)
         slots = front_slots(code, tris)
         used = int(slots[nt])
         if used == nt and not (slots[1:] - slots[:-1] - 1).any():
             rec_tris, rec_src = tris, None  # the usual case: one record per triangle
         else:
             xf, yf, zw, attrv, rec_tris, rec_src = front_assemble(
-                clip_v, code, xf, yf, zw, attrv, tris, slots, gx, gy, user, l, r, b, t, znear,
+                obj, mvp, code, xf, yf, zw, attrv, tris, slots, gx, gy, user, l, r, b, t, znear,
                 zfar, sub)
             idx = np.ascontiguousarray(idx[rec_src])
             culls = np.ascontiguousarray(culls[rec_src])
@@ -631,14 +635,14 @@ class CommandBatch:
         out = self._records()
         cuts = _cuts(used, nthreads if par else 1)
         if len(cuts) <= 1:
-            setup_triangles_states(xf, yf, zw, colv, rec_tris, src, flatv, idx, culls, flat,
-                                   want_colour, *out, start, self.borrow_arrays)
+            self._setup_kernel()(xf, yf, zw, colv, rec_tris, src, flatv, idx, culls, flat,
+                                 want_colour, *out, start)
         else:
             # Every record owns its slot, so chunks set up in parallel, order unchanged.
             pool = threads.pool(nthreads)
-            futures = [pool.submit(setup_triangles_states, xf, yf, zw, colv, rec_tris[a:b],
+            futures = [pool.submit(self._setup_kernel(), xf, yf, zw, colv, rec_tris[a:b],
                                    src[a:b], flatv, idx[a:b], culls[a:b], flat, want_colour,
-                                   *out, start + a, self.borrow_arrays) for a, b in cuts]
+                                   *out, start + a) for a, b in cuts]
             for f in futures:
                 f.result()
         self.ntris = end
@@ -762,16 +766,19 @@ class CommandBatch:
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
             self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
             self.fill_spans, self.zpass_spans,
-            self.prefetch_planes, self.borrow_arrays, work,
+            self.prefetch_planes, work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
-        kernel = render_bands
+        lean = False
         if self.lean_kernel:
             used = np.zeros(len(derived), bool)  # the states triangles use
             used[self.t_state[:self.ntris]] = True
-            if lean_fits(derived[used], self.nruns, self.edge_mode, self.general_only):
-                kernel = render_bands_lean
+            lean = lean_fits(derived[used], self.nruns, self.edge_mode, self.general_only)
+        if self.borrow_arrays:
+            kernel = render_bands_lean_borrowed if lean else render_bands_borrowed
+        else:
+            kernel = render_bands_lean if lean else render_bands
         if nthreads == 1:
             kernel(0, 1, *args)
         else:

@@ -1,5 +1,6 @@
-"""The band kernel on borrowed views (kernels/borrow.py, CommandBatch.borrow_arrays)
-changes nothing drawn and counts the same work.
+"""The band kernel and set-up on borrowed arrays (kernels/borrow.py,
+CommandBatch.borrow_arrays) change nothing drawn and count the same work, and
+borrowed arrays carry no reference counting at all.
 
 Every array the band kernel reads or writes is borrowed: the set-up records, the
 state tables, the four planes (colour to the front and to the back buffer), the
@@ -128,3 +129,62 @@ def test_borrowed_views_give_the_same_heidmann_frame(monkeypatch):
     for light in want:
         np.testing.assert_array_equal(got[light][0], want[light][0])
         np.testing.assert_array_equal(got[light][1], want[light][1])
+
+
+def _counting_calls(dispatcher) -> int:
+    """Calls of Numba's reference counting in the (one) compiled function's IR."""
+    (ir,) = dispatcher.inspect_llvm().values()
+    return sum(1 for line in ir.splitlines()
+               if "call " in line and ("@NRT_incref(" in line or "@NRT_decref(" in line))
+
+
+def test_borrowed_arrays_carry_no_reference_counting():
+    """The mechanism itself: the set-up loop (its ``_setup_one`` inlined at the IR
+    level binds every array argument once a triangle) compiled for plain arrays
+    counts references in the loop; for borrowed arrays (kernels/borrow.py
+    BorrowedArray, whose data model has no meminfo) Numba emits no counting at
+    all.  Compiled afresh (no cache: cached code cannot be inspected)."""
+    import numba
+
+    from vgxsim.kernels import setup
+    from vgxsim.kernels.borrow import BorrowedArray, borrow
+
+    plain = numba.njit(error_model="numpy")(setup.setup_triangles_states.py_func)
+
+    @numba.njit(error_model="numpy")
+    def borrowed(xf, yf, zw, col, tris, src, flat_col, states, culls, t_edge, t_box, t_z,
+                 t_zlim, t_col, t_state):
+        return plain(borrow(xf), borrow(yf), borrow(zw), borrow(col), borrow(tris),
+                     borrow(src), borrow(flat_col), borrow(states), borrow(culls), False,
+                     True, borrow(t_edge), borrow(t_box), borrow(t_z), borrow(t_zlim),
+                     borrow(t_col), borrow(t_state), 0)
+
+    n = 4
+    xf = np.array([0, 2560, 0, 0, 768, 0, 256, 512, 256, 0, 0, 0], np.int64)
+    yf = np.array([0, 0, 2560, 0, 0, 768, 256, 256, 512, 0, 0, 0], np.int64)
+    zw = np.linspace(-100.0, 100.0, 3 * n)
+    col = np.linspace(0.0, 1.0, 12 * n).reshape(3 * n, 4)
+    tris = np.arange(3 * n, dtype=np.int64).reshape(n, 3)
+    idx = np.zeros(n, np.int64)
+
+    def records():
+        return (np.zeros((n, 3, 3), np.int64), np.zeros((n, 4), np.int64),
+                np.zeros((n, 5)), np.zeros((n, 2), np.int64), np.zeros((n, 4, 3)),
+                np.zeros(n, np.int32))
+
+    want, got = records(), records()
+    plain(xf, yf, zw, col, tris, idx, col, idx, idx, False, True, *want, 0)
+    borrowed(xf, yf, zw, col, tris, idx, col, idx, idx, *got)
+    for a, b in zip(got, want, strict=True):
+        np.testing.assert_array_equal(a, b)
+    assert want[1][0, 1] == 10 and want[1][3, 2] > want[1][3, 3]  # drawn, then dead
+    assert len(plain.signatures) == 2  # plain, and borrowed through the wrapper
+    kinds = {any(isinstance(a, BorrowedArray) for a in sig) for sig in plain.signatures}
+    assert kinds == {True, False}
+    counts = {}
+    for sig in plain.signatures:
+        one = numba.njit(error_model="numpy")(setup.setup_triangles_states.py_func)
+        one.compile(sig)
+        counts[any(isinstance(a, BorrowedArray) for a in sig)] = _counting_calls(one)
+    assert counts[False] > 10, counts  # the bindings the borrowed form removes
+    assert counts[True] == 0, counts

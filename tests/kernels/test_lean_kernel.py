@@ -78,6 +78,8 @@ class _Spy:
 
     def __init__(self, monkeypatch, name):
         self.calls = 0
+        if batch_mod.CommandBatch.borrow_arrays:  # its entry on borrowed arrays
+            name += "_borrowed"
         real = getattr(batch_mod, name)
 
         def call(*args):
