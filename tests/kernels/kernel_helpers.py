@@ -377,3 +377,28 @@ def clip_reference(clip_tri, viewport, w, h):
             straddle = (ay > Y) != (by > Y)
             odd ^= straddle & (X < ax + (Y - ay) * ex / ey)
     return odd, dist, pts
+
+
+# ------------------------------------------------------------------ switch checks
+
+
+def heidmann_images(monkeypatch, switch, nthreads, width=640, height=512):
+    """The Heidmann 1991 example's frame (vgxsim.examples.heidmann1991) rendered with
+    ``CommandBatch.<switch>`` off and on under ``nthreads`` threads: ``{False: img,
+    True: img}``, each an (H, W, 4) uint8 array."""
+    from vgxsim import threads
+    from vgxsim.examples import heidmann1991 as h91
+    from vgxsim.gl._core import session
+
+    images = {}
+    for on in (False, True):
+        monkeypatch.setattr(CommandBatch, switch, on)
+        keep = threads._override
+        threads.set_threads(nthreads)
+        session.reset()
+        try:
+            images[on] = h91.render(width, height)
+        finally:
+            session.reset()
+            threads.set_threads(keep)
+    return images

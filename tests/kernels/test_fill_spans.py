@@ -16,11 +16,9 @@ import dataclasses
 
 import numpy as np
 import pytest
-from kernel_helpers import assert_planes_equal, full_state, random_planes, render_naive
-from test_lit_spans import _render, _tri
+from kernel_helpers import full_state, heidmann_images, random_planes
+from test_lit_spans import _tri, assert_switch_changes_no_plane
 
-from vgxsim import threads
-from vgxsim.batch import CommandBatch
 from vgxsim.kernels.fill import FILL_MIN_SPAN
 from vgxsim.state.raster import (
     CMP_ALWAYS,
@@ -83,34 +81,11 @@ def _scene(rng):
 
 
 def test_fill_spans_change_no_plane():
-    rng = np.random.default_rng(4242)
-    for i in range(30):
-        cfg, init, cmds = _scene(rng)
-        n = 2 if i % 3 == 2 else 1
-        block = i % 2 == 0
-        want, off = _render(cmds, cfg, init, n, fill_spans=False, block_update=block)
-        got, on = _render(cmds, cfg, init, n, fill_spans=True, block_update=block)
-        assert_planes_equal(got, want, f"scene {i} threads={n} block_update={block}")
-        assert on == off and on["fragments"] > 0
-        if i < 6:
-            assert_planes_equal(got, render_naive(cmds, W, H, init=init, **cfg), "naive")
+    assert_switch_changes_no_plane(_scene, "fill_spans", 4242, rounds=30, naive_rounds=6)
 
 
 @pytest.mark.parametrize("nthreads", [1, 2])
 def test_heidmann_frame_is_identical(monkeypatch, nthreads):
-    from vgxsim.examples import heidmann1991 as h91
-    from vgxsim.gl._core import session
-
-    images = {}
-    for on in (False, True):
-        monkeypatch.setattr(CommandBatch, "fill_spans", on)
-        keep = threads._override
-        threads.set_threads(nthreads)
-        session.reset()
-        try:
-            images[on] = h91.render(640, 512)
-        finally:
-            session.reset()
-            threads.set_threads(keep)
+    images = heidmann_images(monkeypatch, "fill_spans", nthreads)
     np.testing.assert_array_equal(images[True], images[False])
     assert images[True].any()

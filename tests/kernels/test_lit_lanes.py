@@ -17,11 +17,9 @@ Heidmann frame.
 import numba
 import numpy as np
 import pytest
-from kernel_helpers import assert_planes_equal, render_naive
-from test_lit_spans import _render, _scene
+from kernel_helpers import heidmann_images
+from test_lit_spans import _scene, assert_switch_changes_no_plane
 
-from vgxsim import threads
-from vgxsim.batch import CommandBatch
 from vgxsim.kernels.fragment import channel_i32, cmp_bits
 from vgxsim.kernels.lit import (
     LANES_A,
@@ -173,34 +171,11 @@ def test_alpha_rows_reach_every_mix():
 
 
 def test_lit_lanes_change_no_plane():
-    rng = np.random.default_rng(9902)
-    for i in range(24):
-        cfg, init, cmds = _scene(rng)
-        n = 2 if i % 3 == 2 else 1
-        block = i % 2 == 0
-        want, off = _render(cmds, cfg, init, n, lit_lanes=False, block_update=block)
-        got, on = _render(cmds, cfg, init, n, lit_lanes=True, block_update=block)
-        assert_planes_equal(got, want, f"scene {i} threads={n} block_update={block}")
-        assert on == off and on["fragments"] > 0
-        if i < 4:
-            assert_planes_equal(got, render_naive(cmds, W, H, init=init, **cfg), "naive")
+    assert_switch_changes_no_plane(_scene, "lit_lanes", 9902, rounds=24, naive_rounds=4)
 
 
 @pytest.mark.parametrize("nthreads", [1, 2])
 def test_heidmann_frame_is_identical(monkeypatch, nthreads):
-    from vgxsim.examples import heidmann1991 as h91
-    from vgxsim.gl._core import session
-
-    images = {}
-    for on in (False, True):
-        monkeypatch.setattr(CommandBatch, "lit_lanes", on)
-        keep = threads._override
-        threads.set_threads(nthreads)
-        session.reset()
-        try:
-            images[on] = h91.render(640, 512)
-        finally:
-            session.reset()
-            threads.set_threads(keep)
+    images = heidmann_images(monkeypatch, "lit_lanes", nthreads)
     np.testing.assert_array_equal(images[True], images[False])
     assert images[True].any()

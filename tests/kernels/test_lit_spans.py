@@ -19,6 +19,7 @@ import pytest
 from kernel_helpers import (
     assert_planes_equal,
     full_state,
+    heidmann_images,
     kernel_batch,
     kernel_framebuffer,
     planes_of,
@@ -28,7 +29,6 @@ from kernel_helpers import (
 )
 
 from vgxsim import threads
-from vgxsim.batch import CommandBatch
 from vgxsim.kernels.fragment import add_sat
 from vgxsim.kernels.lit import LIT_MIN_SPAN, add_sat_swar
 from vgxsim.state.raster import (
@@ -92,6 +92,24 @@ def _render(cmds, cfg, init, nthreads=1, **switches):
         threads.set_threads(keep)
 
 
+def assert_switch_changes_no_plane(scene, switch, seed, rounds, naive_rounds):
+    """``rounds`` random scenes of ``scene(rng)`` (``(cfg, init, cmds)``) rendered with
+    ``CommandBatch.<switch>`` off and on (1 or 2 threads, block update on or off in
+    turn): identical planes and work counters, fragments tested; the first
+    ``naive_rounds`` scenes against the naive reference too."""
+    rng = np.random.default_rng(seed)
+    for i in range(rounds):
+        cfg, init, cmds = scene(rng)
+        n = 2 if i % 3 == 2 else 1
+        block = i % 2 == 0
+        want, off = _render(cmds, cfg, init, n, **{switch: False}, block_update=block)
+        got, on = _render(cmds, cfg, init, n, **{switch: True}, block_update=block)
+        assert_planes_equal(got, want, f"{switch} scene {i} threads={n} block_update={block}")
+        assert on == off and on["fragments"] > 0
+        if i < naive_rounds:
+            assert_planes_equal(got, render_naive(cmds, W, H, init=init, **cfg), "naive")
+
+
 def _tri(rng, size, zlo, zhi):
     c = rng.uniform([0, 0], [W, H])
     return tuple((float(c[0] + rng.uniform(-size, size)), float(c[1] + rng.uniform(-size, size)),
@@ -137,34 +155,11 @@ def _scene(rng):
 
 
 def test_lit_spans_change_no_plane():
-    rng = np.random.default_rng(8801)
-    for i in range(30):
-        cfg, init, cmds = _scene(rng)
-        n = 2 if i % 3 == 2 else 1
-        block = i % 2 == 0
-        want, off = _render(cmds, cfg, init, n, lit_spans=False, block_update=block)
-        got, on = _render(cmds, cfg, init, n, lit_spans=True, block_update=block)
-        assert_planes_equal(got, want, f"scene {i} threads={n} block_update={block}")
-        assert on == off and on["fragments"] > 0
-        if i < 4:
-            assert_planes_equal(got, render_naive(cmds, W, H, init=init, **cfg), "naive")
+    assert_switch_changes_no_plane(_scene, "lit_spans", 8801, rounds=30, naive_rounds=4)
 
 
 @pytest.mark.parametrize("nthreads", [1, 2])
 def test_heidmann_frame_is_identical(monkeypatch, nthreads):
-    from vgxsim.examples import heidmann1991 as h91
-    from vgxsim.gl._core import session
-
-    images = {}
-    for on in (False, True):
-        monkeypatch.setattr(CommandBatch, "lit_spans", on)
-        keep = threads._override
-        threads.set_threads(nthreads)
-        session.reset()
-        try:
-            images[on] = h91.render(640, 512)
-        finally:
-            session.reset()
-            threads.set_threads(keep)
+    images = heidmann_images(monkeypatch, "lit_spans", nthreads)
     np.testing.assert_array_equal(images[True], images[False])
     assert images[True].any()
