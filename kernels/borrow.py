@@ -17,7 +17,10 @@ functions then return at once, but each binding still costs a call (they are
 triangle (its assembly, 200k 10-pixel triangles).  :func:`borrow` now gives a
 value of its own type, :class:`BorrowedArray`: the same layout as an array, but
 its data model declares no meminfo, so Numba emits no counting at all for it --
-not a call, not a compare.  Everything an array does (indexing, shapes, views)
+not a call, not a compare (200k 10-pixel triangles, 1 thread, 7 alternating
+pairs of runs, CPU ns a triangle: set-up 89 -> 46, band kernel 190 -> 124, the
+whole draw 421 -> 324; on 2 threads 559 -> 389; the dense scene's frame 112 ->
+92 ms CPU).  Everything an array does (indexing, shapes, views)
 works on it unchanged: it is a ``types.Array`` subclass, and a view of one is a
 plain array whose meminfo is null.
 
