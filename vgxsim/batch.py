@@ -186,6 +186,13 @@ class CommandBatch:
         colour span (kernels/render.py lean_fits), so a cold start compiles only
         those kernels the first image runs; on by default, a switch that changes
         nothing drawn.
+    band_workers : bool
+        With several threads, a flush's bands are taken one after another by one
+        loop per thread, the calling thread one of them (vgxsim/threads.py
+        run_each), not submitted to the pool as one task each: the serial Python
+        of a flush (a future, a queue hand-off and a wake-up per band) capped the
+        2-thread speed-up of the fill passes; on by default, a switch that changes
+        nothing drawn (bands are disjoint rows).
     scatter_bins : bool
         With ``band_records``: the primitives are binned and their records written
         into band order in one pass in drawing order, one sequential write stream
@@ -227,6 +234,7 @@ class CommandBatch:
     prefetch_planes = True
     borrow_arrays = True
     lean_kernel = True
+    band_workers = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -788,11 +796,14 @@ class CommandBatch:
             # pool hands bands to whichever thread is free, the busiest bands (most
             # primitives) first, so that a heavy band is not the last one started
             # while the other thread idles (bands are disjoint: order changes nothing).
-            pool = threads.pool(nthreads)
             order = np.argsort(-np.diff(starts), kind="stable").tolist()
-            futures = [pool.submit(kernel, b, nbands, *args) for b in order]
-            for f in futures:
-                f.result()
+            if self.band_workers:
+                threads.run_each(nthreads, lambda b: kernel(b, nbands, *args), order)
+            else:
+                pool = threads.pool(nthreads)
+                futures = [pool.submit(kernel, b, nbands, *args) for b in order]
+                for f in futures:
+                    f.result()
         self.counters += work.sum(axis=0)
         self.flushes += 1
         self._reset()
