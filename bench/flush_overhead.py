@@ -5,7 +5,8 @@ rounds and prints medians of: the calling thread's CPU time per flush (the seria
 Python share: queueing, flush preparation, handing out bands), the process CPU time
 and the wall time, at 1 and 2 render threads, and the 2-thread wall speed-up.
 
-Usage: python bench/flush_overhead.py [switch] [rounds]  (default band_workers 9)
+Usage: python bench/flush_overhead.py [switch[,switch...]] [rounds]
+(default band_workers,cache_tables 9; several switches are set together)
 """
 
 from __future__ import annotations
@@ -38,9 +39,9 @@ def measure(run, reps: int) -> tuple[float, float, float]:
 
 
 def main(argv: list[str]) -> None:
-    switch = argv[1] if len(argv) > 1 else "band_workers"
+    switches = (argv[1] if len(argv) > 1 else "band_workers,cache_tables").split(",")
     rounds = int(argv[2]) if len(argv) > 2 else 9
-    default = getattr(CommandBatch, switch)
+    defaults = {s: getattr(CommandBatch, s) for s in switches}
     for name in WORKLOADS:
         run, _ = getattr(scenes, name)()
         for n in (1, 2):
@@ -49,16 +50,18 @@ def main(argv: list[str]) -> None:
         res = {(on, n): [] for on in (False, True) for n in (1, 2)}
         for _ in range(rounds):
             for on in (False, True):
-                setattr(CommandBatch, switch, on)
+                for s in switches:
+                    setattr(CommandBatch, s, on)
                 for n in (1, 2):
                     threads.set_threads(n)
                     res[(on, n)].append(measure(run, 5))
-        setattr(CommandBatch, switch, default)
+        for s, v in defaults.items():
+            setattr(CommandBatch, s, v)
         threads.set_threads(None)
         for on in (False, True):
             med = {n: [statistics.median(r[i] for r in res[(on, n)]) for i in range(3)]
                    for n in (1, 2)}
-            print(f"{name:22s} {switch}={int(on)}  "
+            print(f"{name:22s} {'+'.join(switches)}={int(on)}  "
                   f"1thr: main {med[1][0]:.3f} wall {med[1][2]:.3f}  "
                   f"2thr: main {med[2][0]:.3f} cpu {med[2][1]:.3f} wall {med[2][2]:.3f}  "
                   f"speed-up {med[1][2] / med[2][2]:.2f}x")
