@@ -78,6 +78,7 @@ PARALLEL_FRONT = 4_096  # the same for the fused front end (add_object_triangles
 MAX_PRIMITIVES = 1 << 21  # flush when this many primitives are queued
 GATHER_MIN = 4096  # triangles in a flush from which records are copied into band order
 GATHER_MAX = 1 << 20  # binned entries above which they are not (the copy's memory)
+TABLES_MEMO = 64  # distinct state tables a batch keeps derived (cache_tables)
 
 
 def _cuts(n: int, parts: int) -> list[tuple[int, int]]:
@@ -186,6 +187,18 @@ class CommandBatch:
         colour span (kernels/render.py lean_fits), so a cold start compiles only
         those kernels the first image runs; on by default, a switch that changes
         nothing drawn.
+    band_workers : bool
+        With several threads, a flush's bands are taken one after another by one
+        loop per thread, the calling thread one of them (vgxsim/threads.py
+        run_each), not submitted to the pool as one task each: the serial Python
+        of a flush (a future, a queue hand-off and a wake-up per band) capped the
+        2-thread speed-up of the fill passes; on by default, a switch that changes
+        nothing drawn (bands are disjoint rows).
+    cache_tables : bool
+        A flush's state table, derived rows, stencil tables and lean-kernel check
+        are kept per distinct list of state snapshots and reused by a later flush
+        of the same list (untextured tables only; :meth:`_state_tables`); on by
+        default, a switch that changes nothing drawn.
     scatter_bins : bool
         With ``band_records``: the primitives are binned and their records written
         into band order in one pass in drawing order, one sequential write stream
@@ -227,6 +240,8 @@ class CommandBatch:
     prefetch_planes = True
     borrow_arrays = True
     lean_kernel = True
+    band_workers = True
+    cache_tables = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -234,6 +249,7 @@ class CommandBatch:
         self.general_only = False
         self.counters = np.zeros(WORK_SIZE, np.int64)
         self.flushes = 0
+        self._tables_memo: dict[tuple, tuple] = {}
         self._allocate()
         self._reset()
         coldstart.prepare(CommandBatch)  # first batch, empty cache: compile in parallel
@@ -725,28 +741,53 @@ class CommandBatch:
         self._maybe_flush()
 
     # -- flush ----------------------------------------------------------------------
-    def flush(self) -> None:
-        """Render everything queued, in order, and empty the batch."""
-        if self.nprims == 0:
-            return
+    def _state_tables(self) -> tuple:
+        """The flush's state table and what is derived from it: ``(states,
+        tex_table, derived, tables, textured, all_lean)``, ``all_lean`` whether
+        every state takes the lean kernel (lean_fits of the whole table).
+
+        With ``cache_tables``, kept per distinct list of state rows (kept_row: one
+        frozen array per snapshot, so their identities name the values) for an
+        untextured table: a frame flushes the same few snapshots again, and the
+        derivation is Python over every row (about 0.1 ms a flush).  Textured
+        tables are made afresh (pack_bindings reads the current texel arrays)."""
+        rows = self._state_rows
         fb = self.fb
-        states = (np.stack(self._state_rows) if self._state_rows
-                  else np.zeros((1, ROW_SIZE), np.int64))
+        key = (tuple(map(id, rows)), fb.back is None, fb.config.stencil, fb.z is not None)
+        if self.cache_tables:
+            hit = self._tables_memo.get(key)
+            if hit is not None and all(a is b for a, b in zip(hit[0], rows, strict=True)):
+                return hit[1]
+        states = np.stack(rows) if rows else np.zeros((1, ROW_SIZE), np.int64)
         if fb.back is None:
             # Single-buffered: frontbuffer/backbuffer select nothing; everything drawn
             # goes to the one colour buffer (and a dummy back plane is never indexed).
             states = states.copy()
             states[:, S_DRAW_FRONT] |= states[:, S_DRAW_BACK]
             states[:, S_DRAW_BACK] = 0
+        textured = bool(states[:, S_TEXTURE].any())
         states, tex_table = _texture_table(states)
         derived, tables = derive_states(states, fb.config.stencil, True, fb.z is not None)
+        all_lean = lean_fits(derived, 0, False, False)
+        out = (states, tex_table, derived, tables, textured, all_lean)
+        if self.cache_tables and not textured:
+            if len(self._tables_memo) >= TABLES_MEMO:
+                self._tables_memo.clear()
+            self._tables_memo[key] = (tuple(rows), out)
+        return out
+
+    def flush(self) -> None:
+        """Render everything queued, in order, and empty the batch."""
+        if self.nprims == 0:
+            return
+        fb = self.fb
+        states, tex_table, derived, tables, textured, all_lean = self._state_tables()
         front, back, z, st = fb.kernel_planes()
         height = fb.height
         nthreads = max(1, threads.get_threads())
         shift = band_shift(height, nthreads)
         nbands = (height + (1 << shift) - 1) >> shift
         work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
-        textured = bool(states[:, S_TEXTURE].any())
         ordered = (self.band_records and not textured and nbands > 1
                    and self.ntris >= GATHER_MIN)
         got = self._scatter(shift, nbands, nthreads) if ordered and self.scatter_bins else None
@@ -771,7 +812,10 @@ class CommandBatch:
         )
         nthreads = min(nthreads, nbands)
         lean = False
-        if self.lean_kernel:
+        if self.lean_kernel and all_lean and not (self.nruns or self.edge_mode
+                                                  or self.general_only):
+            lean = True  # every state of the table fits: so do those triangles use
+        elif self.lean_kernel:
             used = np.zeros(len(derived), bool)  # the states triangles use
             used[self.t_state[:self.ntris]] = True
             lean = lean_fits(derived[used], self.nruns, self.edge_mode, self.general_only)
@@ -788,11 +832,14 @@ class CommandBatch:
             # pool hands bands to whichever thread is free, the busiest bands (most
             # primitives) first, so that a heavy band is not the last one started
             # while the other thread idles (bands are disjoint: order changes nothing).
-            pool = threads.pool(nthreads)
             order = np.argsort(-np.diff(starts), kind="stable").tolist()
-            futures = [pool.submit(kernel, b, nbands, *args) for b in order]
-            for f in futures:
-                f.result()
+            if self.band_workers:
+                threads.run_each(nthreads, lambda b: kernel(b, nbands, *args), order)
+            else:
+                pool = threads.pool(nthreads)
+                futures = [pool.submit(kernel, b, nbands, *args) for b in order]
+                for f in futures:
+                    f.result()
         self.counters += work.sum(axis=0)
         self.flushes += 1
         self._reset()

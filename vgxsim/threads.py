@@ -9,6 +9,7 @@ overrides it.  Output never depends on the count: bands are disjoint rows.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 
 import numba
@@ -36,3 +37,28 @@ def pool(n: int) -> ThreadPoolExecutor:
     if ex is None:
         ex = _pools[n] = ThreadPoolExecutor(max_workers=n, thread_name_prefix="vgxsim-band")
     return ex
+
+
+def run_each(n: int, fn, items: Sequence) -> None:
+    """``fn(item)`` for every item, on ``n`` threads: the caller and ``n - 1`` pool
+    workers, each taking the next item not yet taken (in the order given) until none
+    is left.
+
+    The caller works instead of waiting, and each worker is one pool task however
+    many items there are: a flush's bands cost no future, queue hand-off or thread
+    wake-up each (measured: bench/flush_overhead.py).  Items must be independent
+    (the bands of a flush are disjoint rows).  The first exception raised is
+    re-raised in the caller once every thread has stopped.
+    """
+    it = iter(items)  # a list iterator's next() is atomic under the GIL
+
+    def work() -> None:
+        for item in it:
+            fn(item)
+
+    futures = [pool(n).submit(work) for _ in range(min(n, len(items)) - 1)]
+    try:
+        work()
+    finally:
+        for f in futures:
+            f.result()
