@@ -213,13 +213,13 @@ def _triangle_rows(
                   or dv[D_MODE] == MODE_ZONLY
                   or (dv[D_MODE] == MODE_COLOUR and (dv[D_CBLEND] == CBLEND_REPLACE
                                                      or dv[D_CBLEND] == CBLEND_ADD))))
-    if (span_zwrite and lit_spans and vector_pack and dv[D_MODE] == MODE_COLOUR
-            and dv[D_ZWRITE] != 0):
+    if span_zwrite and dv[D_MODE] == MODE_COLOUR and dv[D_ZWRITE] != 0:
         # A depth-writing colour pass (Heidmann's ambient pass over a cleared z
         # buffer): its z compare is one select of the vectorized lit span loop, so the
         # block update saves little, while z-passed tiles cut each row into runs of
         # their own (each with the colour and lanes set-up of a span); classified
-        # without it, full and partial tiles merge into one span per row.
+        # without it, full and partial tiles merge into one span per row.  (Not
+        # tied to lit_spans or vector_pack: those switches then change no counter.)
         zpass = False
     step = step_spans and not edge_mode
     classify = (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS

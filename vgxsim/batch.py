@@ -204,7 +204,7 @@ class CommandBatch:
         the helpers they inline per triangle cost no reference-count calls; on by
         default, a switch that changes nothing drawn.
     span_zwrite : bool
-        With ``block_update`` and ``lit_spans``: depth-writing colour passes (blend
+        With ``block_update``: depth-writing colour passes (blend
         replace or ONE+ONE; Heidmann's ambient pass) do not ask for z-passed tiles:
         their vectorized z-tested span loop costs about what the block update's
         loop does, and z-passed tiles would cut each row into one run per class
