@@ -854,6 +854,10 @@ def render_bands(
     prefetch_planes : bool
         Prefetch the plane rows of the small triangle ``PREFETCH_DISTANCE`` entries
         ahead (:mod:`.prefetch`; a hint: a switch, on by default; same planes).
+    span_zwrite : bool
+        With ``block_update``: depth-writing colour passes ask for no z-passed tiles
+        (their z-tested span loop costs about what the block rows do, and z-passed
+        runs cut each row; a switch, on by default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
