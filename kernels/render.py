@@ -193,10 +193,10 @@ def _triangle_rows(
     tight_tiles, step_spans, vector_pack, small_path, block_update, lit, tb, runs, spans,
     work, tex,
 ):
-    # lit = (lit_spans, lit_lanes, fill_spans, zpass_spans): one argument, as an inlined
-    # call of more than 30 arguments compiles to CALL_FUNCTION_EX, which Numba cannot
-    # inline.
-    lit_spans, lit_lanes, fill_spans, zpass_spans = lit
+    # lit = (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite): one argument,
+    # as an inlined call of more than 30 arguments compiles to CALL_FUNCTION_EX, which
+    # Numba cannot inline.
+    lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite = lit
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
     xlo = max(t_box[t, 0], st[S_SX0])
@@ -213,6 +213,14 @@ def _triangle_rows(
                   or dv[D_MODE] == MODE_ZONLY
                   or (dv[D_MODE] == MODE_COLOUR and (dv[D_CBLEND] == CBLEND_REPLACE
                                                      or dv[D_CBLEND] == CBLEND_ADD))))
+    if span_zwrite and dv[D_MODE] == MODE_COLOUR and dv[D_ZWRITE] != 0:
+        # A depth-writing colour pass (Heidmann's ambient pass over a cleared z
+        # buffer): its z compare is one select of the vectorized lit span loop, so the
+        # block update saves little, while z-passed tiles cut each row into runs of
+        # their own (each with the colour and lanes set-up of a span); classified
+        # without it, full and partial tiles merge into one span per row.  (Not
+        # tied to lit_spans or vector_pack: those switches then change no counter.)
+        zpass = False
     step = step_spans and not edge_mode
     classify = (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
     if (small_path and not classify and xhi - xlo < SMALL_NARROW and not general_only
@@ -700,7 +708,7 @@ def _bands_body(
     f_xy, f_z, f_rgba, r_range, r_state = frags
     (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
      small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans,
-     prefetch_planes) = switches
+     prefetch_planes, span_zwrite) = switches
     band_h = 1 << band_shift
     nbands = starts.shape[0] - 1
     ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
@@ -745,7 +753,7 @@ def _bands_body(
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
                     cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
-                    (lit_spans, lit_lanes, fill_spans, zpass_spans), tb, runs,
+                    (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite), tb, runs,
                     spans, bw,
                     tex,
                 )
@@ -773,7 +781,7 @@ def render_bands(
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
     small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
-    work, tex,
+    span_zwrite, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -846,6 +854,10 @@ def render_bands(
     prefetch_planes : bool
         Prefetch the plane rows of the small triangle ``PREFETCH_DISTANCE`` entries
         ahead (:mod:`.prefetch`; a hint: a switch, on by default; same planes).
+    span_zwrite : bool
+        With ``block_update``: depth-writing colour passes ask for no z-passed tiles
+        (their z-tested span loop costs about what the block rows do, and z-passed
+        runs cut each row; a switch, on by default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -861,7 +873,7 @@ def render_bands(
         states, derived, tables, front, back, zbuf, sten,
         (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans,
          vector_pack, small_path, block_update, lit_spans, lit_lanes, fill_spans,
-         zpass_spans, prefetch_planes),
+         zpass_spans, prefetch_planes, span_zwrite),
         work, tex)
 
 
@@ -876,7 +888,7 @@ def render_bands_borrowed(
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
     small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
-    work, tex,
+    span_zwrite, work, tex,
 ):
     """:func:`render_bands` on borrowed arrays (kernels/borrow.py,
     CommandBatch.borrow_arrays; the same arguments): the helpers it inlines per
@@ -895,7 +907,7 @@ def render_bands_borrowed(
         borrow(front), borrow(back), borrow(zbuf), borrow(sten),
         (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans,
          vector_pack, small_path, block_update, lit_spans, lit_lanes, fill_spans,
-         zpass_spans, prefetch_planes),
+         zpass_spans, prefetch_planes, span_zwrite),
         borrow(work), (borrow(tex[0]), borrow(tex[1]), borrow(tex[2]), borrow(tex[3])))
 
 

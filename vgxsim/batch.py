@@ -216,6 +216,12 @@ class CommandBatch:
         render_bands_borrowed and setup_triangles_borrowed): the array arguments of
         the helpers they inline per triangle cost no reference-count calls; on by
         default, a switch that changes nothing drawn.
+    span_zwrite : bool
+        With ``block_update``: depth-writing colour passes (blend
+        replace or ONE+ONE; Heidmann's ambient pass) do not ask for z-passed tiles:
+        their vectorized z-tested span loop costs about what the block update's
+        loop does, and z-passed tiles would cut each row into one run per class
+        (kernels/render.py _triangle_rows); on by default, the same planes either way.
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -242,6 +248,7 @@ class CommandBatch:
     lean_kernel = True
     band_workers = True
     cache_tables = True
+    span_zwrite = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -807,7 +814,7 @@ class CommandBatch:
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
             self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
             self.fill_spans, self.zpass_spans,
-            self.prefetch_planes, work,
+            self.prefetch_planes, self.span_zwrite, work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)

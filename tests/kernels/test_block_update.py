@@ -65,6 +65,9 @@ def _render(cmds, cfg, init, nthreads=1, **switches):
     try:
         fb = kernel_framebuffer(W, H, init=init, **cfg)
         batch = kernel_batch(fb)
+        # The depth-writing colour passes' block rows too (CommandBatch.span_zwrite
+        # leaves them out by default; the scenes below turn it on in turn).
+        switches.setdefault("span_zwrite", False)
         for k, v in switches.items():
             setattr(batch, k, v)
         queue_commands(batch, cmds)
@@ -151,7 +154,7 @@ def test_block_update_changes_no_plane_on_random_scenes():
     rng = np.random.default_rng(7301)
     passed = 0
     variants = [dict(), dict(step_spans=False), dict(tight_tiles=False),
-                dict(vector_pack=False), dict(nthreads=2)]
+                dict(vector_pack=False), dict(nthreads=2), dict(span_zwrite=True)]
     for i in range(36):
         cfg, init, cmds = _scene(rng)
         v = dict(variants[i % len(variants)])
