@@ -121,6 +121,11 @@ class DisplayObject:
         self.single: Chunk | None = None
         if self.chunks is not None and len(self.chunks) == 1 and _replayable(self.chunks):
             self.single = self.chunks[0]
+        # Whether nothing in it nests (only chunks, or a replayable object): a parent
+        # walking its segments hands such an object to callobj's valid path
+        # (_walk), which draws it without a stack.
+        self.leaf = self.chunks is not None or self.replayable
+        self.steps = _steps(self.segments)
 
     @property
     def program(self) -> list:
@@ -599,6 +604,7 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
             if not _replay(ctx, dobj):
                 _trace(ctx, dobj)
             return
+        return _walk(ctx, (obj,), obj, dobj)  # (session.imm: the current window)
     _general_callobj(*given((obj,), more), **kw)
 
 
@@ -614,28 +620,69 @@ def _general_callobj(*args, **kwargs) -> None:
         for ch in dobj.chunks:
             splice(ctx, ch)
         return
-    chain = [obj]
-    stack = [(dobj.segments, 0)]
-    while stack:
-        segments, i = stack.pop()
-        if i >= len(segments):
-            chain.pop()
-            continue
-        stack.append((segments, i + 1))
-        seg = segments[i]
-        if isinstance(seg, Chunk):
-            splice(ctx, seg)
-            continue
+    _walk(ctx, args, obj, dobj)
+
+
+#: Kinds of a :attr:`DisplayObject.steps` entry: a gl call, a chunk, callobj of a
+#: valid object number, callobj of anything else (refused when it is reached, as
+#: the call would be), a bbox2* call.
+_CALL, _RUN, _OBJ, _BADOBJ, _BBOXSTEP = range(5)
+
+
+def _steps(segments: list) -> tuple:
+    """An object's segments as (kind, a, b) steps, tags left out, for :func:`_walk`:
+    (_CALL, func, args), (_RUN, chunk, None), (_OBJ, number, args), (_BADOBJ, None,
+    args), (_BBOXSTEP, func, args).  Worked out once per object (segments never
+    change after construction), so the walk tests one small int per routine."""
+    steps = []
+    for seg in segments:
         if isinstance(seg, Tag):
             continue
-        func, fargs = seg
-        if func in _BBOX and _bbox_culls(ctx, func.__name__, fargs):
-            stack.pop()  # bbox2(3G): the rest of this object is not drawn
-            chain.pop()
+        if isinstance(seg, Chunk):
+            steps.append((_RUN, seg, None))
             continue
+        func, fargs = seg
         if func is callobj:
-            inner = _object_arg("callobj", fargs)
-            inner_obj = session.objects.get(inner)
+            if (len(fargs) == 1 and type(fargs[0]) is int
+                    and 0 <= fargs[0] <= MAX_OBJECT):
+                steps.append((_OBJ, fargs[0], fargs))
+            else:
+                steps.append((_BADOBJ, None, fargs))
+        elif func in _BBOX:
+            steps.append((_BBOXSTEP, func, fargs))
+        else:
+            steps.append((_CALL, func, fargs))
+    return tuple(steps)
+
+
+_DONE = iter(())  # (an exhausted iterator: what a culled object's walk resumes)
+
+
+def _walk(ctx, args: tuple, obj: int, dobj: DisplayObject) -> None:
+    """callobj of an object that calls others, or of one that cannot be replayed:
+    its steps in order, nested objects on an explicit stack of iterators (never
+    Python's), at most MAX_NESTING deep.  With REPLAY_OBJECTS, a nested object in
+    which nothing nests (:attr:`DisplayObject.leaf`) is drawn by callobj's valid
+    path, as a callobj of it in immediate mode would be (inlined splice, prepared
+    replay), instead of segment by segment."""
+    objects = session.objects
+    chain = [obj]
+    stack = [iter(dobj.steps)]
+    while stack:
+        for kind, a, b in stack[-1]:
+            if kind == _CALL:
+                a(*b)
+                continue
+            if kind == _RUN:
+                splice(ctx, a)
+                continue
+            if kind == _BBOXSTEP:
+                if _bbox_culls(ctx, a.__name__, b):
+                    stack[-1] = _DONE  # bbox2(3G): the rest of this object is not drawn
+                    break
+                continue
+            inner = a if kind == _OBJ else _object_arg("callobj", b)
+            inner_obj = objects.get(inner)
             if inner_obj is None:
                 continue
             if inner in chain:
@@ -645,15 +692,15 @@ def _general_callobj(*args, **kwargs) -> None:
             if len(chain) >= MAX_NESTING:
                 raise GLUsageError(f"{describe('callobj', args)}: objects nested more than "
                                    f"{MAX_NESTING} deep (vgxsim's limit, MAX_NESTING)")
-            if (inner_obj.replayable and session.imm is ctx and ctx.prim is None
-                    and _core.REPLAY_OBJECTS):
-                if not _replay(ctx, inner_obj):
-                    _trace(ctx, inner_obj)
+            if inner_obj.leaf and session.imm is ctx and _core.REPLAY_OBJECTS:
+                callobj(inner)  # (nothing in it nests: no deeper than this frame)
                 continue
             chain.append(inner)
-            stack.append((inner_obj.segments, 0))
-            continue
-        func(*fargs)
+            stack.append(iter(inner_obj.steps))
+            break
+        else:
+            stack.pop()
+            chain.pop()
 
 
 @gl_function()
