@@ -19,8 +19,10 @@ W, H = 48, 40
 SEEDS = range(12)
 
 
-def sequence(seed: int, n: int = 40) -> list[tuple[str, tuple]]:
-    """A random call sequence (calls at primitive boundaries only)."""
+def sequence(seed: int, n: int = 40, faces: bool = False) -> list[tuple[str, tuple]]:
+    """A random call sequence (calls at primitive boundaries only).  ``faces``: only
+    stencil() calls and polygons with their colours and normals, as the 1991 shadow
+    faces (objects of nothing else are replayed from prepared blocks, callobj)."""
     rng = np.random.default_rng(seed)
     calls: list[tuple[str, tuple]] = []
 
@@ -40,9 +42,11 @@ def sequence(seed: int, n: int = 40) -> list[tuple[str, tuple]]:
 
     for _ in range(n):
         r = rng.random()
+        if faces:  # a polygon or a stencil() call (r < 0.45: polygon, below)
+            r = 0.0 if r < 0.6 else 0.56
         if r < 0.45:
-            kind = rng.choice(["polygon", "tmesh", "qstrip", "line", "point"],
-                              p=[0.5, 0.15, 0.15, 0.1, 0.1])
+            kind = "polygon" if faces else rng.choice(
+                ["polygon", "tmesh", "qstrip", "line", "point"], p=[0.5, 0.15, 0.15, 0.1, 0.1])
             nv = int(rng.integers(3, 7))
             calls.append((f"bgn{kind}", ()))
             for k in range(nv):
@@ -103,46 +107,93 @@ def _setup():
     return gid
 
 
-def render(calls, objects: bool = False, seed: int = 0) -> dict[str, np.ndarray]:
+def _groups(calls, seed: int) -> list[list[tuple[int, int]]]:
+    """The segments ``render`` records as objects (cut at primitive boundaries,
+    seeded), as (start, stop) ranges of ``calls``, in groups of three (the middle
+    objects)."""
+    rng = np.random.default_rng(1000 + seed)
+    cuts, depth = [0], 0
+    for i, (name, _a) in enumerate(calls):
+        depth += name.startswith("bgn") - name.startswith("end")
+        if depth == 0 and rng.random() < 0.2:
+            cuts.append(i + 1)
+    cuts.append(len(calls))
+    segs = list(zip(cuts[:-1], cuts[1:], strict=True))
+    return [segs[i:i + 3] for i in range(0, len(segs), 3)]
+
+
+def _moves(seed: int, passes: int, groups: int) -> tuple[list, list]:
+    """Per pass and per group, a translation (dx, dy, 0) for ``render(passes=...)``."""
+    rng = np.random.default_rng(2000 + seed)
+    def t():
+        return (float(rng.uniform(-6, 6)), float(rng.uniform(-6, 6)), 0.0)
+    return [t() for _ in range(passes)], [t() for _ in range(groups)]
+
+
+def render(calls, objects: bool = False, seed: int = 0,
+           passes: int = 0) -> dict[str, np.ndarray]:
     """Draw ``calls`` in a fresh W x H window; with ``objects`` record them into
     display objects first (random segments, nested two and three deep) and draw
-    them with one callobj.  Returns the colour, z and stencil planes."""
+    them with one callobj.  Returns the colour, z and stencil planes.
+
+    ``passes`` > 0: draw the whole sequence that many times, each pass under a
+    translation of its own and each group of segments under one more (pushmatrix,
+    translate, ..., popmatrix around the group's calls, or around the callobj of its
+    middle object): the same objects called under changing matrices."""
     from vgxsim import gl
     from vgxsim.gl._core import current
 
     gid = _setup()
     try:
-        if not objects:
+        groups = _groups(calls, seed)
+        outer, inner = _moves(seed, passes, len(groups))
+        if not objects and not passes:
             for name, args in calls:
                 getattr(gl, name)(*args)
+        elif not objects:
+            for move in outer:
+                gl.pushmatrix()
+                gl.translate(*move)
+                for g, members in enumerate(groups):
+                    gl.pushmatrix()
+                    gl.translate(*inner[g])
+                    for a, b in members:
+                        for name, args in calls[a:b]:
+                            getattr(gl, name)(*args)
+                    gl.popmatrix()
+                gl.popmatrix()
         else:
-            rng = np.random.default_rng(1000 + seed)
-            # Cut at primitive boundaries into segments, each its own object.
-            cuts, depth = [0], 0
-            for i, (name, _a) in enumerate(calls):
-                depth += name.startswith("bgn") - name.startswith("end")
-                if depth == 0 and rng.random() < 0.2:
-                    cuts.append(i + 1)
-            cuts.append(len(calls))
             names = []
-            for k, (a, b) in enumerate(zip(cuts[:-1], cuts[1:], strict=True)):
+            for k, (a, b) in enumerate(seg for members in groups for seg in members):
                 gl.makeobj(10 + k)
                 for name, args in calls[a:b]:
                     getattr(gl, name)(*args)
                 gl.closeobj()
                 names.append(10 + k)
             # Groups of segments in middle objects, all in one top object.
-            groups = [names[i:i + 3] for i in range(0, len(names), 3)]
+            k = 0
             for g, members in enumerate(groups):
                 gl.makeobj(500 + g)
-                for m in members:
-                    gl.callobj(m)
+                for _m in members:
+                    gl.callobj(names[k])
+                    k += 1
                 gl.closeobj()
             gl.makeobj(900)
             for g in range(len(groups)):
+                if passes:
+                    gl.pushmatrix()
+                    gl.translate(*inner[g])
                 gl.callobj(500 + g)
+                if passes:
+                    gl.popmatrix()
             gl.closeobj()
-            gl.callobj(900)
+            if not passes:
+                gl.callobj(900)
+            for move in outer:
+                gl.pushmatrix()
+                gl.translate(*move)
+                gl.callobj(900)
+                gl.popmatrix()
         ctx = current("render")
         ctx.flush()
         return {"rgba": ctx.read_rgba().copy(), "z": ctx.fb.z.copy(),

@@ -103,7 +103,9 @@ FAST_CALLS = True
 #: Replay switch (issue 6: callobj and the frame's front end), in effect where
 #: :data:`FAST_CALLS` is.  True: callobj replays an object of stencil calls and small
 #: closed chunks from a prepared block while the caller's state is the block's key
-#: (gl/_objects.py ReplayBlock), splices a one-chunk object inline, and draw-state
+#: (gl/_objects.py ReplayBlock; under another matrix, rebased: REBASE_REPLAYS),
+#: splices a one-chunk object inline -- also where a parent object calls it
+#: (gl/_objects.py _walk) -- and draw-state
 #: records and lmbind(LIGHTn)'s eye-space light entries are kept from one flush to
 #: the next (StateTable.intern_kept).  False: those calls take the FAST_CALLS paths
 #: they took before (the planes are the same either way, tests/stream/

@@ -33,9 +33,12 @@ small closed chunks (the 1991 program's cached shadow faces) is replayed from a
 :class:`ReplayBlock`: what the first callobj appended, appended again while the
 caller's state is the same (identities of the raster snapshot, matrices,
 attributes; the lighting by value, StateTable.lighting_token), its STATE ops
-re-indexed once per flush.  A block belongs to one DisplayObject, which is never
-edited in place, so makeobj, editobj/closeobj and delobj of its number leave no
-stale block; an object that nests others never has one.
+re-indexed once per flush -- and under another composite matrix too, its STATE ops
+pointed at the records of the same raster snapshots under the caller's matrix
+(:func:`_rebase`): an object drawn under a moving transform is not traced again.
+A block belongs to one DisplayObject, which is never edited in place, so makeobj,
+editobj/closeobj and delobj of its number leave no stale block; an object that
+nests others never has one.
 
 **Nesting.**  callobj inside objects runs on an explicit stack, not Python's:
 at most :data:`MAX_NESTING` objects deep (a GLUsageError past it).
@@ -973,7 +976,9 @@ class ReplayBlock:
     ctx, entry_snap, mvp, depth, token, concave, vertex_serial, rgb, lmcolor_mode :
         The key: the window, its raster snapshot before the call, composite matrix,
         depth range, lighting token (StateTable.lighting_token), concave flag,
-        vertex serial, colour mode and lmcolor mode.
+        vertex serial, colour mode and lmcolor mode.  A caller whose key differs in
+        the composite matrix alone replays the block after :func:`_rebase` (which
+        makes ``mvp`` the caller's), with REBASE_REPLAYS.
     colour, normal, last_sent, lmcolor_set : object
         The key's current attributes (identity).
     first_reg, first_snap : object
@@ -1008,8 +1013,9 @@ def _replay(ctx, dobj: DisplayObject) -> bool:
     mvp = ctx.matrices._mvp
     if mvp is None:  # (the same for the matrices; after a popmatrix, KEEP_MVPS gives
         mvp = ctx.matrices.mvp()  # back the product of the matrix popped back to)
-    if not (blk.ctx is ctx and blk.entry_snap is snap and mvp is blk.mvp
-            and ctx.depth_range is blk.depth and ctx.concave is blk.concave
+    if not (blk.ctx is ctx and blk.entry_snap is snap
+            and (mvp is blk.mvp or REBASE_REPLAYS) and ctx.depth_range is blk.depth
+            and ctx.concave is blk.concave
             and ctx.vertex_serial == blk.vertex_serial and ctx.colour is blk.colour
             and ctx.normal is blk.normal and ctx.last_sent is blk.last_sent
             and ctx.lmcolor_set is blk.lmcolor_set and ctx.config.rgb is blk.rgb
@@ -1018,6 +1024,8 @@ def _replay(ctx, dobj: DisplayObject) -> bool:
     st = ctx.stream
     if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
         return False  # (the general replay drains first)
+    if mvp is not blk.mvp:
+        _rebase(ctx, blk, mvp)
     regs.stencil = blk.first_reg
     regs._snapshot = first = blk.first_snap
     # splice()'s prologue of the first chunk: record the draw state and attributes
@@ -1048,6 +1056,38 @@ def _replay(ctx, dobj: DisplayObject) -> bool:
     ctx.last_sent = st.sent = blk.exit_sent
     ctx.lmcolor_set = st.lmcolor_set = blk.exit_lms
     return True
+
+
+#: Rebase switch (in effect with _core.REPLAY_OBJECTS).  True: a block traced under
+#: one composite matrix is replayed under another (an object drawn under a moving
+#: transform, or at several places) with its draw-state records interned anew for
+#: the caller's matrix (:func:`_rebase`); False: the matrix is part of the block's
+#: key and the object is traced again (the planes are the same either way,
+#: tests/stream/test_random_streams.py).
+REBASE_REPLAYS = True
+
+
+def _rebase(ctx, blk: ReplayBlock, mvp) -> None:
+    """Make ``blk`` the block its object would trace under the composite matrix
+    ``mvp``, the rest of its key being the caller's.
+
+    Inside a replayable object only its stencil() calls change the draw state, so
+    every record of the block is a function of its raster snapshot and of the key
+    (matrices, depth range, lighting binding, vertex stage): the record for the
+    same snapshot under ``mvp`` is found as a STATE op of the trace would find it
+    (StateTable.intern_kept, which keeps it across flushes), and written into the
+    STATE ops' index slots.  The ops and floats (object coordinates) and what the
+    block leaves behind do not depend on the matrix."""
+    regs, table = ctx.raster, ctx.states
+    ops = blk.ops
+    states = []
+    for rec, slots in blk.states:
+        regs._snapshot = rec.raster  # (its registers' snapshot: intern reads only it)
+        i = table.intern_kept(ctx)
+        for pos in slots:
+            ops[pos] = i
+        states.append((table.records[i], slots))
+    blk.states, blk.mvp, blk.generation = states, mvp, table.generation
 
 
 def _trace(ctx, dobj: DisplayObject) -> None:
