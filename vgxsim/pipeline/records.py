@@ -395,6 +395,8 @@ class StateTable:
         idx = self.intern(ctx)
         rec = self.records[idx]
         if rec.raster is rs and rec.mvp is mvp:
+            if len(self._kept) >= 4096:  # (a program under a moving matrix makes new
+                self._kept.clear()       #  ones every frame: keep the table bounded)
             self._kept[key] = rec
             self._where[id(rec)] = Placed(idx, rec)
         return idx
