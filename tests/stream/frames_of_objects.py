@@ -1,8 +1,9 @@
 """Seeded multi-frame programs that replay display objects, as the 1991 shadow program
 does with its volume cache: objects of stencil() calls and quads (which callobj
 replays from a prepared block), objects of coloured and lit quads, parents that nest
-them between lmbind calls, lights rebound every frame, and between frames the
-edits that must make any kept replay or draw-state record stale: editobj with
+them between lmbind calls (one parent of only lmbind and stencil calls between
+them, which callobj replays from a prepared block), lights rebound every frame, and
+between frames the edits that must make any kept replay or draw-state record stale: editobj with
 objreplace / objinsert / objdelete, delobj, makeobj of the same number with new
 contents, lmdef of the bound material and light, a new modelview before a light is
 rebound, lmcolor changes.  ``render_frames(seed)`` returns the colour, z and stencil
@@ -66,6 +67,17 @@ def _define(gl, rng, name: int, kind: str, leaves: list, tags: dict) -> None:
             for v in _quad(rng):
                 gl.v3f(v)
             gl.endpolygon()
+    elif kind == "plain parent":  # lmbind, then leaves between lmbind and stencil calls
+        material = 0
+        for k, leaf in enumerate(rng.choice(leaves, size=4)):
+            if k == 0 or rng.random() < 0.6:
+                material = int(rng.integers(0, 3))
+                gl.lmbind(1000, material)  # MATERIAL 0, 1 or 2
+            elif rng.random() < 0.5:
+                gl.stencil(1, int(rng.integers(0, 3)), 7, 0xFF, 0, 0, int(rng.choice(_OPS)))
+            gl.callobj(int(leaf))
+        if rng.random() < 0.6:  # (a binding after the last draw, another: the next draw's)
+            gl.lmbind(1000, (material + 1 + int(rng.integers(0, 2))) % 3)
     else:  # a parent: nested leaves between lmbind and zwritemask calls
         for leaf in rng.choice(leaves, size=3):
             gl.lmbind(1000, int(rng.integers(0, 3)))  # MATERIAL 0, 1 or 2
@@ -126,6 +138,9 @@ def render_frames(seed: int) -> list[dict[str, np.ndarray]]:
         for name in lit:
             _define(gl, rng, name, "lit", [], tags)
         _define(gl, rng, 30, "parent", faces + lit, tags)
+        # (its own generator: the scenes above stay those of the seeds before it)
+        _define(gl, np.random.default_rng(9000 + seed), 31, "plain parent", faces + lit,
+                tags)
         out = []
         ctx = current("frames")
         # One frame's calls, drawn every frame (as a program redraws its scene), so
@@ -149,6 +164,15 @@ def render_frames(seed: int) -> list[dict[str, np.ndarray]]:
                 script.append(("cpack", (int(rng.integers(0, 2**32)),)))
             script.append(("callobj", (int(rng.choice(faces + lit + [30, 30])),)))
         script += [("callobj", (name,)) for name in faces]  # each face object at least once
+        # The plain parent (replayed from a ParentBlock, one per lighting binding: the
+        # two calls find the blocks of the frame before), between other calls.
+        script += [("lmbind", (GL.MATERIAL, 1)), ("callobj", (31,)), ("cpack", (0xFF4080C0,)),
+                   ("lmbind", (GL.MATERIAL, 2)), ("callobj", (31,)),
+                   # what the block leaves: the lighting binding and serial, the
+                   # stencil and the stream's last state, read by the next draws
+                   ("callobj", (20,)), ("stencil", (1, 0, 7, 0xFF, 0, 0, 3)),
+                   ("callobj", (21,)), ("lmbind", (GL.LIGHT0, 2)), ("callobj", (20,)),
+                   ("callobj", (30,))]
         kinds = list(rng.permutation(_EDITS))
         for _f in range(len(kinds) + 1):
             gl.czclear(0, gl.getgdesc(GL.GD_ZMAX))

@@ -162,3 +162,57 @@ def test_the_kept_clear_state_follows_the_registers():
     assert second.wmpack == 0x00FF00FF and second.zwritemask == 0 and not second.zbuffer
     regs.set(wmpack=0xFFFFFFFF, zwritemask=0xFFFFFFFF)
     assert regs.clear_state() is first  # the first registers again: their clear state
+
+
+@pytest.mark.parametrize("seed", list(FRAME_SEEDS))
+def test_replayed_parents_give_identical_planes(seed, monkeypatch):
+    """_objects.REPLAY_PARENTS on and off draw the same planes frame by frame, and
+    the parent's block is replayed (and made stale by the edits between frames)."""
+    from vgxsim.gl import _objects
+
+    used = {"replays": 0, "traces": 0}
+    replay, trace = _objects._replay_parent, _objects._trace_parent
+
+    def counting_replay(ctx, dobj):
+        done = replay(ctx, dobj)
+        used["replays"] += done
+        return done
+
+    def counting_trace(ctx, obj, dobj):
+        used["traces"] += 1
+        return trace(ctx, obj, dobj)
+
+    # The streams decoded, too: a block appends what the walk appends, STATE and SYNC
+    # ops included (so a state the block leaves wrong cannot hide behind equal pixels).
+    from vgxsim.stream.recorder import CommandStream
+
+    streams: list = []
+    arrays = CommandStream.arrays
+
+    def recording_arrays(self):
+        out = arrays(self)
+        streams.append((out[0].copy(), out[1].copy()))
+        return out
+
+    monkeypatch.setattr(_objects, "_replay_parent", counting_replay)
+    monkeypatch.setattr(_objects, "_trace_parent", counting_trace)
+    monkeypatch.setattr(CommandStream, "arrays", recording_arrays)
+    replayed = _frames(seed, True, True, monkeypatch)
+    assert used["replays"] > 0 and used["traces"] > 0
+    replayed_streams, streams[:] = streams[:], []
+    monkeypatch.setattr(_objects, "REPLAY_PARENTS", False)
+    walked = _frames(seed, True, True, monkeypatch)
+    for i, (a, b) in enumerate(zip(replayed, walked, strict=True)):
+        for k in a:
+            assert np.array_equal(a[k], b[k]), (i, k)
+    assert len(replayed_streams) == len(streams)
+    for (ops_a, fl_a), (ops_b, fl_b) in zip(replayed_streams, streams, strict=True):
+        assert np.array_equal(ops_a, ops_b) and np.array_equal(fl_a, fl_b)
+
+
+def test_the_int_payloads_are_the_decoders():
+    from vgxsim.gl._objects import _INT_PAYLOAD
+    from vgxsim.kernels.decode import _int_payload
+
+    for op in range(16):
+        assert _INT_PAYLOAD.get(op, 0) == _int_payload.py_func(op), op

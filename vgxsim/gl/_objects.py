@@ -65,9 +65,23 @@ import numpy as np
 
 from vgxsim import GL
 from vgxsim.pipeline.decode import drain
-from vgxsim.stream.opcodes import BGN, CM, CRAW, CSKIP, END, KIND_OF, STATE, SWAP, N, T, V
+from vgxsim.stream.opcodes import (
+    BGN,
+    CLEAR,
+    CM,
+    CRAW,
+    CSKIP,
+    END,
+    KIND_OF,
+    STATE,
+    SWAP,
+    SYNC,
+    N,
+    T,
+    V,
+)
 from vgxsim.stream.opcodes import C as C_OP
-from vgxsim.stream.recorder import MAX_STREAM_OPS, SPLICE_MIN_FLOATS, Chunk, RecordedCall
+from vgxsim.stream.recorder import MAX_STREAM_OPS, SPLICE_MIN_FLOATS, Chunk, Part, RecordedCall
 
 from . import _core
 from ._core import (
@@ -86,6 +100,7 @@ from ._core import (
     session,
 )
 from ._draw import CLOSER, OPENER, _restate_changed, sync
+from ._lighting import _BOUND_KEY, _PLAIN_INTS, _SHORT_MAX, lmbind
 from ._raster import stencil
 
 __all__ = ["genobj", "makeobj", "closeobj", "callobj", "delobj", "isobj", "getopenobj",
@@ -129,6 +144,8 @@ class DisplayObject:
         # (_walk), which draws it without a stack.
         self.leaf = self.chunks is not None or self.replayable
         self.steps = _steps(self.segments)
+        # Whether callobj may replay it from a ParentBlock (_parent_replayable).
+        self.parent = _parent_replayable(self.steps)
 
     @property
     def program(self) -> list:
@@ -606,6 +623,10 @@ def callobj(obj=_NO, /, *more, **kw) -> None:
         if dobj.replayable and ctx.prim is None and _core.REPLAY_OBJECTS:
             if not _replay(ctx, dobj):
                 _trace(ctx, dobj)
+            return
+        if dobj.parent and ctx.prim is None and _core.REPLAY_OBJECTS and REPLAY_PARENTS:
+            if not _replay_parent(ctx, dobj):
+                _trace_parent(ctx, obj, dobj)
             return
         return _walk(ctx, (obj,), obj, dobj)  # (session.imm: the current window)
     _general_callobj(*given((obj,), more), **kw)
@@ -1139,6 +1160,259 @@ def _trace(ctx, dobj: DisplayObject) -> None:
     blk.exit_reg, blk.exit_snap, blk.exit_raster = regs.stencil, regs._snapshot, st.raster
     blk.exit_colour, blk.exit_normal = ctx.colour, ctx.normal
     blk.exit_sent, blk.exit_lms = ctx.last_sent, ctx.lmcolor_set
+    if len(dobj.blocks) >= 8:
+        dobj.blocks.clear()
+    dobj.blocks[blk.token] = blk
+
+
+# -- prepared replays of parents -----------------------------------------------------------
+#: Parent replay switch (in effect with _core.REPLAY_OBJECTS).  True: callobj of an
+#: object of lmbind(MATERIAL / BACKMATERIAL / LMODEL) and stencil() calls and
+#: callobj of leaf objects (a scene's DrawObjects recorded once, Heidmann 1991) is
+#: replayed from a :class:`ParentBlock` while the caller's state is its key; False:
+#: it is walked (:func:`_walk`) every time (the planes are the same either way,
+#: tests/stream/test_fast_calls.py).
+REPLAY_PARENTS = True
+
+
+def _parent_replayable(steps: tuple) -> bool:
+    """Whether an object's steps are a parent :func:`_replay_parent` may replay:
+    lmbind of a material, back material or lighting model (plain int arguments; what
+    they change -- ``Context.bound``, the lighting serial and token -- the block
+    sets), stencil() calls, and callobj of valid numbers (whose objects are checked
+    to be leaves at each trace, and to be the same objects at each replay); the
+    first step an lmbind, so the first object drawn records its draw state anew
+    whatever the stream held before (the lighting serial moved)."""
+    if not steps or steps[0][1] is not lmbind:
+        return False
+    objs = 0
+    for kind, a, b in steps:
+        if kind == _OBJ:
+            objs += 1
+        elif kind != _CALL:
+            return False
+        elif a is lmbind:
+            if not (len(b) == 2 and type(b[0]) in _PLAIN_INTS and int(b[0]) in _BOUND_KEY
+                    and type(b[1]) is int and 0 <= b[1] <= _SHORT_MAX):
+                return False
+        elif a is not stencil:
+            return False
+    return objs > 0
+
+
+def _plain_leaf(d: DisplayObject) -> bool:
+    """A leaf whose chunks open and close their primitives and set no texture
+    coordinate or graphics position and draw no lines (what callobj does with it is
+    a function of the caller's state and the stream's last state and attributes)."""
+    if not d.leaf:
+        return False
+    chunks = d.chunks if d.chunks is not None else [s for s in d.segments
+                                                   if isinstance(s, Chunk)]
+    return all(ch.needs in (None, "closed") and ch.open is None and ch.texcoord is None
+               and ch.gpos is None and not ch.has_lines for ch in chunks)
+
+
+#: Integer payload of each opcode (kernels/decode.py _int_payload; tested alike).
+_INT_PAYLOAD = {SYNC: 2, BGN: 1, STATE: 1, CLEAR: 1}
+
+
+def _state_slots(ops: list) -> list:
+    """Where the STATE ops of a stretch of opcodes hold their record index."""
+    out = []
+    i, n = 0, len(ops)
+    get = _INT_PAYLOAD.get
+    while i < n:
+        op = ops[i]
+        if op == STATE:
+            out.append(i + 1)
+        i += 1 + get(op, 0)
+    return out
+
+
+class ParentBlock:
+    """What one callobj of a parent (:func:`_parent_replayable`) appended and left
+    behind, kept to be appended again while the caller's state is its key.
+
+    Attributes
+    ----------
+    ctx, entry_snap, mvp, depth, token, concave, vertex_serial, rgb, lmcolor_mode,
+    colour, normal, last_sent, lmcolor_set :
+        The key, as :class:`ReplayBlock`'s (no rebasing: ``mvp`` is compared).
+    st_colour, st_normal, st_sent, st_lms : object
+        The stream's attributes before the call (the first SYNC op depends on them).
+    inner : tuple of (int, DisplayObject or None)
+        Each object called, by number, as found when traced.
+    pieces : list of (list, list) or Part
+        What the call appended, in order: stretches of the lists (copied into the
+        stream's lists) and chunks spliced as arrays (appended as parts, as
+        CommandStream.splice appends them).
+    states : list of (DrawState, list of (int, int))
+        Each record of the STATE ops in ``pieces`` and where (piece, position) its
+        index is; ``generation`` is the table generation the indices hold for.
+    bound : tuple of (str, int)
+        The ``Context.bound`` entries the lmbind calls leave.
+    serial_step, st_serial_step : int
+        How far the calls move the lighting serial, and where the stream's last
+        STATE op leaves ``st.lighting_serial``, from the serial before the call.
+    exit_reg, exit_snap, exit_raster, exit_plain, exit_token :
+        The stencil register, raster snapshot, stream's last recorded snapshot, the
+        stream's ``plain_colour`` and the lighting token after the call.
+    exit_attrs, exit_st_attrs : tuple
+        The caller's (colour, normal, last_sent, lmcolor_set) after the call, and the
+        stream's (which differ where an lmbind of a material followed the last
+        draw).
+    """
+
+    __slots__ = ("ctx", "entry_snap", "mvp", "depth", "token", "concave", "vertex_serial",
+                 "rgb", "lmcolor_mode", "colour", "normal", "last_sent", "lmcolor_set",
+                 "st_colour", "st_normal", "st_sent", "st_lms", "inner", "pieces", "states",
+                 "generation", "bound", "serial_step", "st_serial_step", "exit_reg",
+                 "exit_snap", "exit_raster", "exit_attrs", "exit_st_attrs", "exit_plain",
+                 "exit_token")
+
+
+def _replay_parent(ctx, dobj: DisplayObject) -> bool:
+    """callobj of a parent from its block, if the caller's state is the block's key
+    and the objects it calls are the ones it was traced with (True); else False,
+    and nothing is done."""
+    table = ctx.states
+    blk = dobj.blocks.get(table.lighting_token(ctx))
+    if blk is None:
+        return False
+    regs = ctx.raster
+    snap = regs._snapshot
+    if snap is None:
+        snap = regs.snapshot()
+    mvp = ctx.matrices._mvp
+    if mvp is None:
+        mvp = ctx.matrices.mvp()
+    st = ctx.stream
+    if not (blk.ctx is ctx and blk.entry_snap is snap and mvp is blk.mvp
+            and ctx.depth_range is blk.depth and ctx.concave is blk.concave
+            and ctx.vertex_serial == blk.vertex_serial and ctx.colour is blk.colour
+            and ctx.normal is blk.normal and ctx.last_sent is blk.last_sent
+            and ctx.lmcolor_set is blk.lmcolor_set and ctx.config.rgb is blk.rgb
+            and ctx.lmcolor_mode == blk.lmcolor_mode and st.colour is blk.st_colour
+            and st.normal is blk.st_normal and st.sent is blk.st_sent
+            and st.lmcolor_set is blk.st_lms):
+        return False
+    objects = session.objects
+    for n, d in blk.inner:
+        if objects.get(n) is not d:
+            return False
+    if st.parts_ops + len(st.ops) > MAX_STREAM_OPS:
+        return False
+    pieces = blk.pieces
+    if blk.generation != table.generation:  # a flush emptied the table: index anew
+        adopt = table.adopt
+        for rec, slots in blk.states:
+            i = adopt(rec)
+            for piece, pos in slots:
+                pieces[piece][0][pos] = i
+        blk.generation = table.generation
+    for piece in pieces:
+        if type(piece) is tuple:
+            st.ops.extend(piece[0])
+            st.fl.extend(piece[1])
+            continue
+        if st.ops or st.fl:  # CommandStream.splice of a chunk's arrays
+            st.parts.append(Part(st.ops, st.fl))
+            st.parts_ops += len(st.ops)
+            st.parts_fl += len(st.fl)
+            st.ops = []
+            st.fl = []
+        st.parts.append(piece)
+        st.parts_ops += piece.ops.shape[0]
+        st.parts_fl += piece.fl.shape[0]
+    bound = ctx.bound
+    for key, index in blk.bound:
+        bound[key] = index
+    serial = ctx.lighting_serial
+    ctx.lighting_serial = serial + blk.serial_step
+    table.token_serial, table.token = ctx.lighting_serial, blk.exit_token
+    regs.stencil = blk.exit_reg
+    regs._snapshot = blk.exit_snap
+    # The stream's last STATE op, as the calls' last one left it (under the key's
+    # matrices, depth and vertex stage, and the serial moved as they moved it).
+    st.raster = blk.exit_raster
+    st.mvp, st.depth, st.concave = mvp, ctx.depth_range, ctx.concave
+    st.vertex_serial = ctx.vertex_serial
+    st.lighting_serial = serial + blk.st_serial_step
+    st.plain_colour = blk.exit_plain
+    st.state_memo.clear()  # (its records were found under another lighting serial)
+    # (The caller's attributes and the stream's apart: lmbind(MATERIAL) clears the
+    # caller's lmcolor_set only, lmbind(3G) / lmcolor(3G).)
+    ctx.colour, ctx.normal, ctx.last_sent, ctx.lmcolor_set = blk.exit_attrs
+    st.colour, st.normal, st.sent, st.lmcolor_set = blk.exit_st_attrs
+    return True
+
+
+def _trace_parent(ctx, obj: int, dobj: DisplayObject) -> None:
+    """callobj of a parent, walked (:func:`_walk`), keeping what it appends and
+    leaves as the object's :class:`ParentBlock` when the objects it calls are plain
+    leaves (:func:`_plain_leaf`) and nothing flushed the stream meanwhile."""
+    objects = session.objects
+    inner = tuple((a, objects.get(a)) for kind, a, _b in dobj.steps if kind == _OBJ)
+    if not all(d is None or _plain_leaf(d) for _n, d in inner):
+        _walk(ctx, (obj,), obj, dobj)
+        return
+    regs, st, table = ctx.raster, ctx.stream, ctx.states
+    blk = ParentBlock()
+    blk.ctx = ctx
+    blk.entry_snap = regs.snapshot()
+    blk.mvp = ctx.matrices.mvp()
+    blk.depth, blk.concave = ctx.depth_range, ctx.concave
+    blk.vertex_serial, blk.rgb = ctx.vertex_serial, ctx.config.rgb
+    blk.lmcolor_mode = ctx.lmcolor_mode
+    blk.token = table.lighting_token(ctx)
+    blk.colour, blk.normal = ctx.colour, ctx.normal
+    blk.last_sent, blk.lmcolor_set = ctx.last_sent, ctx.lmcolor_set
+    blk.st_colour, blk.st_normal, blk.st_sent, blk.st_lms = (st.colour, st.normal, st.sent,
+                                                             st.lmcolor_set)
+    blk.inner = inner
+    generation, parts0 = table.generation, len(st.parts)
+    ops0, fl0 = len(st.ops), len(st.fl)
+    serial0 = ctx.lighting_serial
+    _walk(ctx, (obj,), obj, dobj)
+    if (table.generation != generation or ctx.prim is not None or len(st.parts) < parts0
+            or st.lighting_serial is None or not serial0 < st.lighting_serial
+            or any(objects.get(n) is not d for n, d in inner)):
+        return  # (flushed, left open, or nothing drawn: no block)
+    if len(st.parts) == parts0:
+        pieces = [(st.ops[ops0:], st.fl[fl0:])]
+    else:
+        new = st.parts[parts0:]
+        pieces = []
+        if isinstance(new[0].ops, list):  # the lists the first splice put aside
+            pieces.append((new[0].ops[ops0:], new[0].fl[fl0:]))
+            new = new[1:]
+        elif ops0 or fl0:
+            return
+        for part in new:
+            pieces.append((list(part.ops), list(part.fl)) if isinstance(part.ops, list)
+                          else part)
+        pieces.append((st.ops[:], st.fl[:]))
+    records = table.records
+    slots: dict[int, tuple] = {}  # id(record) -> (record, its STATE ops' index slots)
+    for k, piece in enumerate(pieces):
+        if type(piece) is tuple:
+            for pos in _state_slots(piece[0]):
+                rec = records[piece[0][pos]]
+                slots.setdefault(id(rec), (rec, []))[1].append((k, pos))
+    blk.states = list(slots.values())
+    if any(rec.raster.texture != 0 for rec, _slots in blk.states):
+        return  # (such records are made by StateTable.intern, not kept)
+    blk.pieces, blk.generation = pieces, generation
+    blk.bound = tuple((key, ctx.bound.get(key, 0)) for key in
+                      sorted({_BOUND_KEY[int(b[0])] for kind, a, b in dobj.steps
+                              if kind == _CALL and a is lmbind}))
+    blk.serial_step = ctx.lighting_serial - serial0
+    blk.st_serial_step = st.lighting_serial - serial0
+    blk.exit_reg, blk.exit_snap, blk.exit_raster = regs.stencil, regs._snapshot, st.raster
+    blk.exit_attrs = (ctx.colour, ctx.normal, ctx.last_sent, ctx.lmcolor_set)
+    blk.exit_st_attrs = (st.colour, st.normal, st.sent, st.lmcolor_set)
+    blk.exit_plain = st.plain_colour
+    blk.exit_token = table.lighting_token(ctx)
     if len(dobj.blocks) >= 8:
         dobj.blocks.clear()
     dobj.blocks[blk.token] = blk
