@@ -24,7 +24,11 @@ Reports, medians over rounds, all measured in this one run:
   (FUSED_FRONT, BATCH_LIGHTING) on and off, alternating frame by frame;
 * the makeobj replay of the frame's DrawObjects (one callobj per pass);
 * the front end of both with gl._core.REPLAY_OBJECTS (callobj's prepared replays,
-  draw-state records kept across flushes) off and on, alternating;
+  draw-state records kept across flushes) off and on, alternating, and of the
+  makeobj replay with gl._objects.REPLAY_PARENTS (the DrawObjects objects replayed
+  from ParentBlocks) off and on;
+* callobj of the 16-face object under a new matrix at each call with
+  gl._objects.REBASE_REPLAYS off (traced again) and on (rebased);
 * the same frame drawn by a PyOpenGL immediate-mode transliteration of the example
   (bench/heidmann_gl.py) on llvmpipe with LP_NUM_THREADS=1 and 2.
 
@@ -238,6 +242,24 @@ def vgxsim_calls(rounds: int) -> dict[str, float]:
         ab = _switch_ab_ns(loop, calls, rounds, after)
         out[f"{name}, REPLAY_OBJECTS off"] = ab[False] / per
         out[f"{name}, REPLAY_OBJECTS on"] = ab[True] / per
+    # The face object under a new matrix at every call (an object drawn at several
+    # places, or under a moving transform): its block rebased or traced again.
+    from vgxsim.gl import _objects
+
+    moves = [(float(k % 7), 0.5 * (k % 5), 0.0) for k in range(n // N_FACES)]
+
+    def loop_faces_moving():
+        for m in moves:
+            gl.pushmatrix()
+            gl.translate(*m)
+            gl.callobj(2)
+            gl.popmatrix()
+
+    ab = _switch_ab_ns(loop_faces_moving, len(moves), rounds, after_faces,
+                       (_objects, "REBASE_REPLAYS"))
+    for on in (False, True):
+        out[f"push+translate+callobj {N_FACES} faces+pop, REBASE_REPLAYS "
+            f"{'on' if on else 'off'} (per face)"] = ab[on] / N_FACES
     gl.zwritemask(0xFFFFFFFF)
     gl.wmpack(0xFFFFFFFF)
     gl.winclose(gid)
@@ -405,16 +427,18 @@ N_FACES = 16
 FACES_ROW = f"callobj ({N_FACES} stencil+quad faces, per face)"
 
 
-def _switch_ab_ns(loop, n: int, rounds: int, after=None) -> dict[bool, float]:
-    """Median ns per call of ``loop()`` with gl._core.REPLAY_OBJECTS off and on,
-    alternating round by round (A/B in one process: both see the same load)."""
+def _switch_ab_ns(loop, n: int, rounds: int, after=None, switch=None) -> dict[bool, float]:
+    """Median ns per call of ``loop()`` with gl._core.REPLAY_OBJECTS (or ``switch``,
+    a (module, name) pair of another module switch) off and on, alternating round by
+    round (A/B in one process: both see the same load)."""
     from vgxsim.gl import _core
 
+    module, name = switch if switch is not None else (_core, "REPLAY_OBJECTS")
     ts: dict[bool, list] = {False: [], True: []}
     try:
         for r in range(rounds + 1):
             for on in (False, True):
-                _core.REPLAY_OBJECTS = on
+                setattr(module, name, on)
                 clock = CLOCK["ns"]
                 t = clock()
                 loop()
@@ -424,7 +448,7 @@ def _switch_ab_ns(loop, n: int, rounds: int, after=None) -> dict[bool, float]:
                 if r:
                     ts[on].append(dt)
     finally:
-        _core.REPLAY_OBJECTS = True
+        setattr(module, name, True)
     return {on: float(np.median(v)) / n for on, v in ts.items()}
 
 
@@ -567,6 +591,7 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
     from vgxsim import gl
     from vgxsim.examples.heidmann1991 import Shadows
     from vgxsim.geometry import pipeline as geometry
+    from vgxsim.gl import _objects
     from vgxsim.pipeline import draw
 
     spent = [0.0]
@@ -602,23 +627,25 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
             return (float(np.median(tot_a)) * 1e3, float(np.median(ras_a)) * 1e3,
                     float(np.median(tot_a - ras_a)) * 1e3)
 
-        def replay_ab(run, prefix: str) -> dict[str, float]:
-            """Front end with gl._core.REPLAY_OBJECTS off and on, frame by frame."""
+        def replay_ab(run, prefix: str, switch=None, word: str = "replay") -> dict[str, float]:
+            """Front end with gl._core.REPLAY_OBJECTS (or ``switch``: (module, name))
+            off and on, frame by frame."""
             from vgxsim.gl import _core
 
+            module, name = switch if switch is not None else (_core, "REPLAY_OBJECTS")
             fe: dict = {False: [], True: []}
             try:
                 for _ in range(rounds):
                     for on in (False, True):
-                        _core.REPLAY_OBJECTS = on
+                        setattr(module, name, on)
                         run()  # (the first frame after a switch settles its caches)
                         spent[0] = 0.0
                         t = clock()
                         run()
                         fe[on].append(clock() - t - spent[0])
             finally:
-                _core.REPLAY_OBJECTS = True
-            return {f"{prefix}front_end_ms_replay_{'on' if on else 'off'}":
+                setattr(module, name, True)
+            return {f"{prefix}front_end_ms_{word}_{'on' if on else 'off'}":
                     float(np.median(v)) * 1e3 for on, v in fe.items()}
 
         def fast_paths(on: bool) -> None:
@@ -658,6 +685,7 @@ def heidmann_frame(rounds: int, width: int = 1280, height: int = 1024,
             (out["objects_frame_ms"], out["objects_raster_ms"],
              out["objects_front_end_ms"]) = measure(frame)
             out.update(replay_ab(frame, "objects_"))
+            out.update(replay_ab(frame, "objects_", (_objects, "REPLAY_PARENTS"), "parents"))
         finally:
             prog.DrawObjects = draw_objects
         out.update(replay_ab(frame, ""))
