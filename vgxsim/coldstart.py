@@ -65,14 +65,15 @@ polyhedron_from_polygons([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
 """
 
 
-def _band_kernel_cached() -> bool | None:
-    """Whether the band kernel has a cache index on disk (None: cannot tell)."""
+def _band_kernel_cached(batch_type) -> bool | None:
+    """Whether the band kernel a first batch of ``batch_type`` compiles (the copy of
+    its ``lean_kernel`` and ``borrow_arrays`` switches: each copy has its own cache
+    entry) is loaded or has a cache index on disk (None: cannot tell)."""
     try:
-        from vgxsim.kernels.render import render_bands_lean
-
-        if render_bands_lean.signatures:
+        kernel = batch_type.band_kernel(batch_type.lean_kernel, batch_type.borrow_arrays)
+        if kernel.signatures:
             return True
-        return os.path.exists(render_bands_lean._cache._cache_file._index_path)
+        return os.path.exists(kernel._cache._cache_file._index_path)
     except (AttributeError, OSError):
         return None
 
@@ -95,7 +96,7 @@ def prepare(batch_type) -> None:
     _started = True
     if os.environ.get(_ENV, "1") == "0" or (os.cpu_count() or 1) < 2:
         return
-    if _band_kernel_cached() is not False:
+    if _band_kernel_cached(batch_type) is not False:
         return
     env = dict(os.environ, **{_ENV: "0"})
     try:
