@@ -194,3 +194,45 @@ def test_cold_shadows_compiles_only_the_band_tree_in_process(tmp_path):
     assert proc.returncode == 0, proc.stderr[-2000:]
     assert json.loads(proc.stdout.split("ROOTS ")[-1].splitlines()[0]) == []
     assert json.loads(proc.stdout.split("STARTED ")[-1]) == 0
+
+
+# The band kernel a first batch compiles (the one-clear flush of coldstart.prepare),
+# alone, from an empty cache: every function compiled, with its CPU seconds.
+_LEAN_COMPILES = r"""
+import json, time
+from numba.core import event
+_rows, _stack = [], []
+class _All(event.Listener):
+    def on_start(self, ev):
+        f = ev.data["dispatcher"].py_func
+        _stack.append((f.__module__ + "." + f.__qualname__, time.process_time()))
+    def on_end(self, ev):
+        name, t = _stack.pop()
+        _rows.append((name, time.process_time() - t))
+event.register("numba:compile", _All())
+from vgxsim.batch import CommandBatch
+from vgxsim.state.planes import Framebuffer, PlaneConfig
+from vgxsim.state.raster import RasterState
+batch = CommandBatch(Framebuffer(PlaneConfig(8, 8, stencil=8)))
+batch.add_clear(7, 0, 0, 0, RasterState(scissor=(0, 7, 0, 7)))
+batch.flush()
+print("COMPILES " + json.dumps(_rows))
+"""
+
+
+@pytest.mark.slow
+def test_lean_band_kernel_compiles_none_of_the_paths_it_leaves_out(tmp_path):
+    """render_bands_lean(_borrowed) prunes, before typing, every call lean_fits rules
+    out.  A pruned call whose branch stays reachable (an `if not _FULL: pass` ahead
+    of an elif chain) still compiles its callee: the SA+MSA spans did, ~2 s of CPU."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), VGXSIM_PARALLEL_COMPILE="0")
+    proc = subprocess.run([sys.executable, "-c", _LEAN_COMPILES], env=env,
+                          capture_output=True, text=True, timeout=1200)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    names = {n for n, _ in json.loads(proc.stdout.split("COMPILES ")[-1])}
+    assert "vgxsim.kernels.render.render_bands_lean_borrowed" in names  # a cold compile
+    assert "vgxsim.kernels.tiles.classify_tiles" in names  # callees are listed
+    left_out = ("render._general_row", "render._colour_span_slow", "render._fragment_run",
+                "render._alpha_span", "lit.alpha_span_lanes", "texture.texture_fragment",
+                "fragment.fragment", "fragment.blend_sa_msa")
+    assert [n for n in names if n.split("kernels.")[-1] in left_out] == []
