@@ -236,34 +236,3 @@ def test_lean_band_kernel_compiles_none_of_the_paths_it_leaves_out(tmp_path):
                 "render._alpha_span", "lit.alpha_span_lanes", "texture.texture_fragment",
                 "fragment.fragment", "fragment.blend_sa_msa")
     assert [n for n in names if n.split("kernels.")[-1] in left_out] == []
-
-
-def test_prime_switch_decides_the_helper_script(monkeypatch):
-    monkeypatch.delenv("VGXSIM_PRIME_CALLEES", raising=False)
-    on = coldstart.helper_script()
-    monkeypatch.setenv("VGXSIM_PRIME_CALLEES", "0")
-    off = coldstart.helper_script()
-    assert "prime_band_callees" in on and "prime_band_callees" not in off
-    assert on.endswith(coldstart._GEOMETRY) and off == coldstart._GEOMETRY
-
-
-@pytest.mark.slow
-def test_band_kernel_loads_the_block_update_the_helper_primed(tmp_path):
-    """kernels/prime.py calls z_passed_row with the band kernel's argument types: after
-    the helper's script, the band kernel of a first batch loads the block update's
-    three callees from the cache instead of compiling them (a type that differs
-    anywhere, a layout or a borrowed array, would compile them again)."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), VGXSIM_PARALLEL_COMPILE="0")
-    env.pop("VGXSIM_PRIME_CALLEES", None)
-    script = coldstart._PRIME + coldstart._GEOMETRY
-    proc = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True,
-                          text=True, timeout=1200)
-    assert proc.returncode == 0, proc.stderr[-2000:]
-    proc = subprocess.run([sys.executable, "-c", _LEAN_COMPILES], env=env,
-                          capture_output=True, text=True, timeout=1200)
-    assert proc.returncode == 0, proc.stderr[-2000:]
-    names = {n.split("kernels.")[-1] for n, _ in json.loads(proc.stdout.split("COMPILES ")[-1])}
-    assert "render.render_bands_lean_borrowed" in names  # the band kernel compiled here
-    assert "tiles.classify_tiles" in names  # (callees not primed still compile here)
-    primed = {"blocks.z_passed_row", "blocks._colour_passed", "lit.lit_span_lanes"}
-    assert primed & names == set()

@@ -20,12 +20,6 @@ types the real first image passes (array layouts included: a signature the helpe
 did not compile is compiled again, serially, in this process; see
 docs/cold_start.md for the two that were).
 
-The helper first compiles the band kernel's largest callee tree, the block update
-(kernels/prime.py), which the main process then loads from the cache when its
-typing reaches the call: the band tree was several seconds longer than the
-helper's geometry (docs/cold_start.md, s23).  ``VGXSIM_PRIME_CALLEES=0`` leaves it
-to the main process as before.
-
 Set ``VGXSIM_PARALLEL_COMPILE=0`` to compile in-process only (also the default on a
 single CPU, and whenever the cache cannot be inspected).
 """
@@ -38,24 +32,6 @@ import sys
 
 _ENV = "VGXSIM_PARALLEL_COMPILE"
 _started = False
-
-_PRIME_ENV = "VGXSIM_PRIME_CALLEES"
-
-# Run by the helper first (unless VGXSIM_PRIME_CALLEES=0): the band kernel's block
-# update (kernels/prime.py), for the arrays of the main process's one-clear flush
-# (prepare below), so that the main process loads it instead of compiling it.
-_PRIME = r"""
-from vgxsim.batch import CommandBatch
-from vgxsim.kernels.prime import prime_band_callees
-from vgxsim.state.planes import Framebuffer, PlaneConfig
-from vgxsim.state.raster import RasterState
-batch = CommandBatch(Framebuffer(PlaneConfig(8, 8, stencil=8)))
-batch.add_clear(7, 0, 0, 0, RasterState(scissor=(0, 7, 0, 7)))
-states, _, derived, tables, _, _ = batch._state_tables()
-prime_band_callees(False, batch.t_col, states, derived, tables, *batch.fb.kernel_planes(),
-                   batch.vector_pack, batch.lit_lanes)
-del batch
-"""
 
 _GEOMETRY = r"""
 import vgxsim.batch as B
@@ -87,13 +63,6 @@ from vgxsim.shadow.scene import polyhedron_from_polygons
 polyhedron_from_polygons([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
                          [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], "tetrahedron")
 """
-
-
-def helper_script() -> str:
-    """The helper's Python code: the block-update priming (switch
-    ``VGXSIM_PRIME_CALLEES``, on unless ``0``), then the geometry kernels."""
-    prime = os.environ.get(_PRIME_ENV, "1") != "0"
-    return (_PRIME if prime else "") + _GEOMETRY
 
 
 def _band_kernel_cached(batch_type) -> bool | None:
@@ -131,7 +100,7 @@ def prepare(batch_type) -> None:
         return
     env = dict(os.environ, **{_ENV: "0"})
     try:
-        helper = subprocess.Popen([sys.executable, "-c", helper_script()], env=env,
+        helper = subprocess.Popen([sys.executable, "-c", _GEOMETRY], env=env,
                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     except OSError:
         return
