@@ -3,7 +3,7 @@
 With an empty Numba cache the first image waits for every kernel it needs to
 compile, one after another (Numba compiles under one global lock, so threads do
 not help).  The kernels fall into two trees that share nothing: the band kernel
-(``render_bands_lean``, the copy a first image without points, lines or
+(``render_bands_lean_borrowed``, the copy a first image without points, lines or
 general-path states uses, and everything it calls) and the geometry kernels (transform,
 clip, project, set-up, the command-stream decoder, edge adjacency and Newell
 normals of shadow-casting meshes).  When the band kernel's cache entry is missing,
@@ -110,7 +110,7 @@ def prepare(batch_type) -> None:
 
         batch = batch_type(Framebuffer(PlaneConfig(8, 8, stencil=8)))
         batch.add_clear(7, 0, 0, 0, RasterState(scissor=(0, 7, 0, 7)))
-        batch.flush()  # compiles render_bands_lean and the raster kernels it calls
+        batch.flush()  # compiles the batch's lean band kernel and the kernels it calls
     finally:
         try:
             helper.wait(timeout=600)
