@@ -14,12 +14,18 @@ are given for the process and, apart, for its children (the parallel-compile
 helper of vgxsim/coldstart.py): on a loaded machine they move less than wall time,
 and on an idle one with two CPUs the larger of the two bounds the cold start.
 
-Python's own bytecode cache goes with the Numba cache: ``PYTHONPYCACHEPREFIX`` is a
-folder inside it and ``PYTHONDONTWRITEBYTECODE`` is cleared, so a cold run also
-compiles vgxsim's sources to bytecode and a warm one reads them as an installed
-package would (where the environment sets PYTHONDONTWRITEBYTECODE, as this
-project's machines do, every "warm" run used to compile some 130 modules again:
-about 0.5 s CPU, bench/startup.py --no-pyc measures that way).
+Python's own bytecode cache goes with the Numba cache, for vgxsim's sources only:
+``PYTHONDONTWRITEBYTECODE`` is cleared and ``PYTHONPYCACHEPREFIX`` is one folder
+(``PYC_PREFIX``) whose entries for the measured checkout are removed before each cold
+run, so a cold run compiles vgxsim's sources to bytecode (as a fresh editable install
+would) and a warm one reads them as an installed package would (where the environment
+sets PYTHONDONTWRITEBYTECODE, as this project's machines do, every "warm" run used to
+compile some 130 modules again: about 0.5 s CPU, bench/startup.py --no-pyc measures
+that way).  Python's, numpy's and Numba's own bytecode stays in the folder (filled
+once, before the first round), as an installed interpreter's does: with an empty
+prefix per cold run, as this script used to give, every cold process -- the helper
+too -- compiled the standard library, numpy and Numba to bytecode as well (about
+1.5 s CPU each, which no user with an empty Numba cache pays).
 
 Workloads:
 
@@ -45,6 +51,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -118,17 +125,56 @@ atexit.register(lambda: print("COMPILES " + json.dumps(_rows)))
 
 #: Whether runs keep Python's bytecode with the Numba cache (see the module docstring).
 PYC = True
+#: The bytecode folder of every run (PYTHONPYCACHEPREFIX): the standard library's,
+#: numpy's and Numba's bytecode is kept, the measured checkout's removed for a cold run.
+PYC_PREFIX = os.path.join(tempfile.gettempdir(), f"vgxsim-startup-pyc-{os.getuid()}")
+
+# Imports what a first image imports, and compiles one small kernel (Numba's compile
+# pipeline), without a cache: fills PYC_PREFIX with the bytecode of all but vgxsim.
+PRIME = r"""
+import numba, numpy as np
+import vgxsim.cli, vgxsim.pipeline.context, PIL.Image, PIL.PngImagePlugin
+numba.njit(lambda a: np.zeros(3)[0] + a)(1.0)
+"""
+
+
+def _env(cache: str, env_extra: dict) -> dict:
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+    if PYC:
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env["PYTHONPYCACHEPREFIX"] = PYC_PREFIX
+    env.update(env_extra)
+    return env
+
+
+def forget_bytecode(python: str, env_extra: dict | None = None) -> None:
+    """Remove the bytecode of the checkout that ``python`` imports vgxsim from (its
+    sources and kernels/) from ``PYC_PREFIX``: the next run compiles it again."""
+    if not PYC:
+        return
+    env = _env(tempfile.gettempdir(), env_extra or {})
+    origin = subprocess.run(
+        [python, "-c", "import importlib.util as u; print(u.find_spec('vgxsim').origin)"],
+        capture_output=True, text=True, env=env, check=True).stdout.strip()
+    root = os.path.dirname(os.path.dirname(os.path.realpath(origin)))
+    shutil.rmtree(os.path.join(PYC_PREFIX, root.lstrip(os.sep)), ignore_errors=True)
+
+
+def prime_bytecode(python: str, env_extra: dict | None = None) -> None:
+    """Fill ``PYC_PREFIX`` with the bytecode of all a first image imports (a run in a
+    throwaway Numba cache, compiling nothing of vgxsim's)."""
+    if not PYC:
+        return
+    with tempfile.TemporaryDirectory() as cache:
+        subprocess.run([python, "-c", PRIME], capture_output=True, check=True,
+                       env=_env(cache, env_extra or {}), cwd=tempfile.gettempdir())
 
 
 def run_once(python: str, code: str, cache: str, out: str, env_extra: dict
              ) -> tuple[float, float, float]:
     """Wall seconds to the first image, CPU seconds of the process and of its helper
     (children finished by then) in one run."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=cache)
-    if PYC:
-        env.pop("PYTHONDONTWRITEBYTECODE", None)
-        env["PYTHONPYCACHEPREFIX"] = os.path.join(cache, "pyc")
-    env.update(env_extra)
+    env = _env(cache, env_extra)
     t0 = time.time()
     proc = subprocess.run([python, "-c", code, repr(t0), out], capture_output=True,
                           text=True, env=env, cwd=tempfile.gettempdir())
@@ -145,6 +191,8 @@ def start_times(code: str = TRIANGLE, python: str = sys.executable, warm_runs: i
     Returns (cold, [warm, ...]), each (wall s, CPU s, helper CPU s) (:func:`run_once`).
     """
     env_extra = env_extra or {}
+    prime_bytecode(python, env_extra)
+    forget_bytecode(python, env_extra)
     with tempfile.TemporaryDirectory() as cache:
         out = os.path.join(cache, "first.png")
         cold = run_once(python, code, cache, out, env_extra)
@@ -246,6 +294,8 @@ def main(argv=None) -> int:
     floor = []
     keys = ("cold", "cold_cpu", "cold_helper", "warm", "warm_cpu")
     res = {(w, v[0]): {k: [] for k in keys} for w in names for v in variants}
+    for _, python, env_extra in variants:
+        prime_bytecode(python, env_extra)
     for r in range(args.rounds):
         with tempfile.TemporaryDirectory() as cache:
             floor.append(run_once(sys.executable, FLOOR, cache, "", {})[0])

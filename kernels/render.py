@@ -482,15 +482,19 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
         sref = st[S_SREF] & smask
         slt, seq, sgt = cmp_bits(sfunc)
         add = blend == CBLEND_ADD
+        # (lean_fits: a lean batch has no SA+MSA blend.  Each branch tests _FULL
+        # first: Numba prunes a branch whose condition is a False global before
+        # typing, and only then -- a `not _FULL` branch of its own left the two
+        # SA+MSA branches below it reachable, so the lean kernel compiled them.)
         if not _FULL and blend == CBLEND_SA_MSA:
-            pass  # (lean_fits: a lean batch has no SA+MSA blend)
-        elif (blend == CBLEND_SA_MSA and lit_lanes and vector_pack
+            pass
+        elif (_FULL and blend == CBLEND_SA_MSA and lit_lanes and vector_pack
                 and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                              adx)):
             alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
                              bdx, adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt,
                              smask, sref, wm, dv[D_ZMASK], cbuf, zbuf, sten)
-        elif blend == CBLEND_SA_MSA:
+        elif _FULL and blend == CBLEND_SA_MSA:
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)

@@ -261,6 +261,16 @@ class CommandBatch:
         self._reset()
         coldstart.prepare(CommandBatch)  # first batch, empty cache: compile in parallel
 
+    @staticmethod
+    def band_kernel(lean: bool, borrowed: bool):
+        """The band kernel :meth:`flush` calls: the lean copy (``lean``) or the full
+        one, on borrowed arrays (``borrowed``, the ``borrow_arrays`` switch) or plain
+        ones.  vgxsim/coldstart.py asks it which kernel's cache entry a first image
+        needs: each of the four has its own."""
+        if borrowed:
+            return render_bands_lean_borrowed if lean else render_bands_borrowed
+        return render_bands_lean if lean else render_bands
+
     def reset_counters(self) -> None:
         """Zero the work counters."""
         self.counters[:] = 0
@@ -826,10 +836,7 @@ class CommandBatch:
             used = np.zeros(len(derived), bool)  # the states triangles use
             used[self.t_state[:self.ntris]] = True
             lean = lean_fits(derived[used], self.nruns, self.edge_mode, self.general_only)
-        if self.borrow_arrays:
-            kernel = render_bands_lean_borrowed if lean else render_bands_borrowed
-        else:
-            kernel = render_bands_lean if lean else render_bands
+        kernel = self.band_kernel(lean, self.borrow_arrays)
         if nthreads == 1:
             kernel(0, 1, *args)
         else:

@@ -3,7 +3,7 @@
 With an empty Numba cache the first image waits for every kernel it needs to
 compile, one after another (Numba compiles under one global lock, so threads do
 not help).  The kernels fall into two trees that share nothing: the band kernel
-(``render_bands_lean``, the copy a first image without points, lines or
+(``render_bands_lean_borrowed``, the copy a first image without points, lines or
 general-path states uses, and everything it calls) and the geometry kernels (transform,
 clip, project, set-up, the command-stream decoder, edge adjacency and Newell
 normals of shadow-casting meshes).  When the band kernel's cache entry is missing,
@@ -65,14 +65,15 @@ polyhedron_from_polygons([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
 """
 
 
-def _band_kernel_cached() -> bool | None:
-    """Whether the band kernel has a cache index on disk (None: cannot tell)."""
+def _band_kernel_cached(batch_type) -> bool | None:
+    """Whether the band kernel a first batch of ``batch_type`` compiles (the copy of
+    its ``lean_kernel`` and ``borrow_arrays`` switches: each copy has its own cache
+    entry) is loaded or has a cache index on disk (None: cannot tell)."""
     try:
-        from vgxsim.kernels.render import render_bands_lean
-
-        if render_bands_lean.signatures:
+        kernel = batch_type.band_kernel(batch_type.lean_kernel, batch_type.borrow_arrays)
+        if kernel.signatures:
             return True
-        return os.path.exists(render_bands_lean._cache._cache_file._index_path)
+        return os.path.exists(kernel._cache._cache_file._index_path)
     except (AttributeError, OSError):
         return None
 
@@ -95,7 +96,7 @@ def prepare(batch_type) -> None:
     _started = True
     if os.environ.get(_ENV, "1") == "0" or (os.cpu_count() or 1) < 2:
         return
-    if _band_kernel_cached() is not False:
+    if _band_kernel_cached(batch_type) is not False:
         return
     env = dict(os.environ, **{_ENV: "0"})
     try:
@@ -109,7 +110,7 @@ def prepare(batch_type) -> None:
 
         batch = batch_type(Framebuffer(PlaneConfig(8, 8, stencil=8)))
         batch.add_clear(7, 0, 0, 0, RasterState(scissor=(0, 7, 0, 7)))
-        batch.flush()  # compiles render_bands_lean and the raster kernels it calls
+        batch.flush()  # compiles the batch's lean band kernel and the kernels it calls
     finally:
         try:
             helper.wait(timeout=600)
