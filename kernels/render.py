@@ -198,9 +198,10 @@ def _triangle_rows(
     work, tex,
 ):
     # lit = (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite,
-    # stencil_bounds): one argument, as an inlined call of more than 30 arguments
-    # compiles to CALL_FUNCTION_EX, which Numba cannot inline.
-    lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite, stencil_bounds = lit
+    # stencil_bounds, sided_bounds): one argument, as an inlined call of more than 30
+    # arguments compiles to CALL_FUNCTION_EX, which Numba cannot inline.
+    (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite, stencil_bounds,
+     sided_bounds) = lit
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
     xlo = max(t_box[t, 0], st[S_SX0])
@@ -248,7 +249,7 @@ def _triangle_rows(
         if dv[D_ZWRITE] != 0 and tested > 0:
             note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, (front.shape[1] + TILE_W - 1)
                            >> TILE_SHIFT, t_zlim[t, 0], t_zlim[t, 1], dv[D_ZMASK],
-                           st[S_ZFUNC])
+                           st[S_ZFUNC], sided_bounds)
         return
     # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
     s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
@@ -442,7 +443,8 @@ def _triangle_rows(
         if tested > 0:  # (every tile skipped: nothing written)
             note_stencil_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx)
     if dv[D_ZWRITE] != 0 and tested > 0:  # every tile skipped: nothing written
-        note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zmin, zmax, dv[D_ZMASK], st[S_ZFUNC])
+        note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zmin, zmax, dv[D_ZMASK], st[S_ZFUNC],
+                       sided_bounds)
 
 
 @callee
@@ -733,7 +735,7 @@ def _bands_body(
     f_xy, f_z, f_rgba, r_range, r_state = frags
     (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
      small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans,
-     prefetch_planes, span_zwrite, stencil_bounds) = switches
+     prefetch_planes, span_zwrite, stencil_bounds, sided_bounds) = switches
     band_h = 1 << band_shift
     nbands = starts.shape[0] - 1
     ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
@@ -780,7 +782,7 @@ def _bands_body(
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
                     cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
                     (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite,
-                     stencil_bounds), tb, runs,
+                     stencil_bounds, sided_bounds), tb, runs,
                     spans, bw,
                     tex,
                 )
@@ -808,7 +810,7 @@ def render_bands(
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
     small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
-    span_zwrite, stencil_bounds, work, tex,
+    span_zwrite, stencil_bounds, sided_bounds, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -890,6 +892,10 @@ def render_bands(
         bounds too: skipped where the test fails for every stored value, run without
         the per-fragment stencil test where it passes for every one (:mod:`.tiles`;
         a switch, on by default; same planes).
+    sided_bounds : bool
+        Z writes under a zfunction without the "greater" (or "less") outcome leave
+        the tiles' upper (lower) depth bound as it was instead of widening it
+        (:func:`.tiles.note_z_written`; a switch, on by default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -905,7 +911,7 @@ def render_bands(
         states, derived, tables, front, back, zbuf, sten,
         (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans,
          vector_pack, small_path, block_update, lit_spans, lit_lanes, fill_spans,
-         zpass_spans, prefetch_planes, span_zwrite, stencil_bounds),
+         zpass_spans, prefetch_planes, span_zwrite, stencil_bounds, sided_bounds),
         work, tex)
 
 
@@ -920,7 +926,7 @@ def render_bands_borrowed(
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
     small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
-    span_zwrite, stencil_bounds, work, tex,
+    span_zwrite, stencil_bounds, sided_bounds, work, tex,
 ):
     """:func:`render_bands` on borrowed arrays (kernels/borrow.py,
     CommandBatch.borrow_arrays; the same arguments): the helpers it inlines per
@@ -939,7 +945,7 @@ def render_bands_borrowed(
         borrow(front), borrow(back), borrow(zbuf), borrow(sten),
         (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans,
          vector_pack, small_path, block_update, lit_spans, lit_lanes, fill_spans,
-         zpass_spans, prefetch_planes, span_zwrite, stencil_bounds),
+         zpass_spans, prefetch_planes, span_zwrite, stencil_bounds, sided_bounds),
         borrow(work), (borrow(tex[0]), borrow(tex[1]), borrow(tex[2]), borrow(tex[3])))
 
 

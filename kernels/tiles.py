@@ -43,6 +43,8 @@ import numpy as np
 
 from vgxsim.state.codes import (
     CMP_EQUAL,
+    CMP_GREATER_BIT,
+    CMP_LESS_BIT,
     S_ZFUNC,
     WORK_BLOCKS_COVERED,
     WORK_BLOCKS_Z_PASSED,
@@ -333,12 +335,15 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
         prev = runs[nruns - 1, 2] if nruns > 0 else TILE_SKIP
         zp = cls == TILE_ZPASS or cls == TILE_ZPASS_SPAN
         zp_prev = prev == TILE_ZPASS or prev == TILE_ZPASS_SPAN
-        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and runs[nruns - 1, RUN_SFREE] == sfree \
-                and (prev == cls or (zp and zp_prev) or (merge and not zp_prev and not zp)):
+        if nruns > 0 and runs[nruns - 1, 1] == cx0 - 1 and (prev == cls or (zp and zp_prev) or (
+                merge and not zp_prev and not zp)):
             # Span rows solve their edges once per row anyway: one long run (a long
             # vectorized loop) beats a run per class; it is full only if all tiles are
-            # (z-passed runs of both kinds: a z-passed run clipped to the row's span).
+            # (z-passed runs of both kinds: a z-passed run clipped to the row's span),
+            # and free of the stencil test only if all tiles are (a run per tile
+            # costs a span call each, more than the test saves over a tile's row).
             runs[nruns - 1, 1] = cx1
+            runs[nruns - 1, RUN_SFREE] &= sfree
             if cls != prev:
                 runs[nruns - 1, 2] = TILE_ZPASS_SPAN if zp else TILE_PARTIAL
         else:
@@ -351,7 +356,7 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
 
 
 @inline
-def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc):
+def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc, sided):
     """After a primitive wrote depths in ``[zlo, zhi]`` (unwrapped) through
     ``zmask`` somewhere in columns ``[xlo, xhi]``, rows ``[ylo, yhi]`` of the band
     starting at row ``y_lo`` (``ntx`` tiles a tile row): widen the valid bounds of
@@ -359,7 +364,12 @@ def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc):
     them when the stored value is not simply the written one (a partial mask, or a
     depth that wraps to 24 bits).  Under zfunction(ZF_EQUAL) a fragment writes only
     where its depth equals the stored one, so a full-mask write of a 24-bit value
-    leaves the plane, and any bounds within 24 bits, unchanged."""
+    leaves the plane, and any bounds within 24 bits, unchanged.  With ``sided``
+    (CommandBatch.sided_bounds): a zfunction without the "greater" outcome
+    (ZF_LESS, ZF_LEQUAL) writes only depths at most the stored ones, so no value
+    rises and ``hi`` still bounds the tile; without "less" (ZF_GREATER, ZF_GEQUAL)
+    ``lo`` does (Heidmann's ambient and lit passes, ZF_LEQUAL: a lit triangle's
+    far corners no longer push ``hi`` out, which kept its hidden faces' tiles)."""
     full = zmask == Z24_MASK
     exact = full and zlo >= ZMIN24 and zhi <= ZMAX24
     for ty in range((ylo - y_lo) >> TILE_H_SHIFT, ((yhi - y_lo) >> TILE_H_SHIFT) + 1):
@@ -372,8 +382,10 @@ def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc):
                 continue
             if exact:
                 # Bounds still contain every depth, but the old extreme may be gone.
-                tb[i, TB_LO] = min(tb[i, TB_LO], zlo)
-                tb[i, TB_HI] = max(tb[i, TB_HI], zhi)
+                if not (sided and (zfunc & CMP_LESS_BIT) == 0):
+                    tb[i, TB_LO] = min(tb[i, TB_LO], zlo)
+                if not (sided and (zfunc & CMP_GREATER_BIT) == 0):
+                    tb[i, TB_HI] = max(tb[i, TB_HI], zhi)
                 if tb[i, TB_VALID] == TB_EXACT:
                     tb[i, TB_VALID] = TB_LOOSE
                     tb[i, TB_DEBT] = 0

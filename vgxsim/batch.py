@@ -235,6 +235,12 @@ class CommandBatch:
         value without the per-fragment stencil test (vgxsim/kernels/tiles.py;
         Heidmann's lit pass after the shadow faces); on by default, the same planes
         either way.
+    sided_bounds : bool
+        A triangle that writes z under ZF_LESS or ZF_LEQUAL (ZF_GREATER, ZF_GEQUAL)
+        can only lower (raise) stored depths, so it widens only the lower (upper)
+        depth bound of the tiles it wrote (vgxsim/kernels/tiles.py note_z_written;
+        Heidmann's ambient and lit passes); on by default, the same planes either
+        way (tighter bounds skip more tiles).
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
@@ -265,6 +271,7 @@ class CommandBatch:
     cache_tables = True
     span_zwrite = True
     stencil_bounds = True
+    sided_bounds = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -830,7 +837,8 @@ class CommandBatch:
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
             self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
             self.fill_spans, self.zpass_spans,
-            self.prefetch_planes, self.span_zwrite, self.stencil_bounds, work,
+            self.prefetch_planes, self.span_zwrite, self.stencil_bounds, self.sided_bounds,
+            work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)
