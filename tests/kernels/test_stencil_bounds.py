@@ -11,6 +11,8 @@ plane; a hand-counted quad checks the counters and that a stencil write after a
 lit pass makes the next one read the plane again.
 """
 
+import dataclasses
+
 import numpy as np
 from kernel_helpers import (
     assert_planes_equal,
@@ -52,6 +54,12 @@ def test_stencil_bounds_change_no_plane_on_layered_scenes():
         # Everything but the clears once more: stencil writes after a lit pass has
         # found bounds, then a lit pass that must read the plane again.
         cmds = cmds + [c for c in cmds if c[0] not in ("clear", "flush")]
+        # And the lit triangles as the lit_equal_fill workload draws them: z writes
+        # off, ONE+ONE (the ZF_EQUAL loop of lit_span_lanes).
+        cmds += [("triangle", c[1], dataclasses.replace(c[2], zwritemask=0, blend_sf=BF_ONE,
+                                                        blend_df=BF_ONE))
+                 for c in cmds if c[0] == "triangle" and c[2].zfunc == CMP_EQUAL
+                 and c[2].stencil and c[2].sfunc == CMP_EQUAL]
         n = 2 if i % 3 == 2 else 1
         modes = ("span", "general", "edge") if i % 5 == 0 else ("span",)
         for mode in modes:
