@@ -76,13 +76,14 @@ def add_op_bytes(dpass, smax):
 
 @callee
 def z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab, cbuf,
-                 zbuf, sten, vector_pack, lit_lanes):
+                 zbuf, sten, vector_pack, lit_lanes, sfree):
     """Row ``uy``, columns ``[xl, xr]`` of triangle ``t``, all inside a TILE_ZPASS
     run: every fragment passes the z test.  ``za`` is the row's depth at column
     ``x0`` (the span loops' expression); ``cbuf`` the one colour buffer
     MODE_COLOUR draws.  The values written are those of the span loops in
     :mod:`.render` for a passing fragment (``lit_lanes``: MODE_COLOUR rows on
-    32-bit lanes where :func:`.lit.lanes_ok` allows)."""
+    32-bit lanes where :func:`.lit.lanes_ok` allows; ``sfree``: their stencil test
+    is known to pass, from the tiles' stencil bounds)."""
     mode = dv[D_MODE]
     if mode == MODE_ZSTENCIL_ADD:
         lo, hi, d = add_op_bytes(dv[D_DZPASS], dv[D_SMAX])
@@ -104,16 +105,16 @@ def z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab
                 zbuf[uy, np.uintp(x)] = wrap_z24(round_z(za + dzdx * (x - x0), zmin, zmax))
     elif mode == MODE_COLOUR:
         _colour_passed(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf,
-                       zbuf, sten, vector_pack, lit_lanes)
+                       zbuf, sten, vector_pack, lit_lanes, sfree)
 
 
 @callee
 def _colour_passed(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
-                   sten, vector_pack, lit_lanes):
+                   sten, vector_pack, lit_lanes, sfree):
     """MODE_COLOUR (blend replace or ONE+ONE) with the z test known to pass: the
     branch-free loop of render._colour_span without the z read and compare."""
     zwrite = dv[D_ZWRITE] != 0
-    stest = dv[D_STENCIL] != 0
+    stest = dv[D_STENCIL] != 0 and not sfree
     add = dv[D_CBLEND] == CBLEND_ADD
     wm = st[S_WMPACK] & 0xFFFFFFFF
     keep = ~wm & 0xFFFFFFFF

@@ -241,7 +241,23 @@ def lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gd
     sr = np.int32(min(max(sref, -1), 256) if stest else 0)
     if not stest:
         slt, seq, sgt = False, True, False
-    if zwrite:
+    z0 = np.int32(0)
+    if not stest and zwrite:
+        # No stencil test (the ambient pass), or one known to pass (a lit pass over
+        # tiles whose stencil bounds pass: kernels/tiles.py): the test's operands as
+        # literals, so LLVM folds ``s & 0`` and the loop reads no stencil at all.
+        if add:
+            lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                      lt, eq, gt, True, False, True, False, z0, z0, 1, wms, cbuf, zbuf, sten)
+        else:
+            lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                      lt, eq, gt, True, False, True, False, z0, z0, 0, wms, cbuf, zbuf, sten)
+    elif not stest and add and (not lt) and eq and (not gt):
+        # Heidmann's lit pass at zfunction(ZF_EQUAL) where the stencil test passes.
+        lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
+                  False, True, False, False, False, True, False, z0, z0, 1, wms,
+                  cbuf, zbuf, sten)
+    elif zwrite:
         if add:
             lanes_row(uy, xl, xr, za, dzdx, x0, zlo, zhi, ra, ga, ba, aa, rdx, gdx, bdx, adx,
                       lt, eq, gt, True, slt, seq, sgt, sm, sr, 1, wms, cbuf, zbuf, sten)

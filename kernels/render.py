@@ -90,7 +90,10 @@ from .small import small_mode, small_triangle
 from .spans import edge_next, edge_start_at, span_from
 from .texture import texture_fragment
 from .tiles import (
+    RUN_SFREE,
+    RUN_SIZE,
     TB_SIZE,
+    TB_SVALID,
     TB_UNKNOWN,
     TB_VALID,
     TILE_FULL,
@@ -104,6 +107,7 @@ from .tiles import (
     TILE_ZPASS,
     TILE_ZPASS_SPAN,
     classify_tiles,
+    note_stencil_written,
     note_z_cleared,
     note_z_written,
 )
@@ -193,10 +197,11 @@ def _triangle_rows(
     tight_tiles, step_spans, vector_pack, small_path, block_update, lit, tb, runs, spans,
     work, tex,
 ):
-    # lit = (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite): one argument,
-    # as an inlined call of more than 30 arguments compiles to CALL_FUNCTION_EX, which
-    # Numba cannot inline.
-    lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite = lit
+    # lit = (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite,
+    # stencil_bounds, sided_bounds): one argument, as an inlined call of more than 30
+    # arguments compiles to CALL_FUNCTION_EX, which Numba cannot inline.
+    (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite, stencil_bounds,
+     sided_bounds) = lit
     ylo = max(y_lo, max(t_box[t, 2], st[S_SY0]))
     yhi = min(y_hi, min(t_box[t, 3], st[S_SY1]))
     xlo = max(t_box[t, 0], st[S_SX0])
@@ -222,19 +227,29 @@ def _triangle_rows(
         # tied to lit_spans or vector_pack: those switches then change no counter.)
         zpass = False
     step = step_spans and not edge_mode
-    classify = (skip or cover_blocks) and (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS
+    # Stencil bounds (kernels/tiles.py): a colour pass's stencil test only masks, so
+    # a tile whose stored values all fail it is skipped and one whose values all pass
+    # it runs without it (Heidmann's lit pass after the shadow faces: stencil EQUAL
+    # to the "zero" 128 over the unshadowed tiles, not EQUAL over the shadowed ones).
+    sbounds = stencil_bounds and dv[D_MODE] == MODE_COLOUR and dv[D_STENCIL] != 0
+    stencil_writes = dv[D_STENCIL] != 0 and dv[D_MODE] != MODE_COLOUR
+    classify = (skip or cover_blocks or sbounds) and (
+        (xhi - xlo + 1) * (yhi - ylo + 1) >= TILE_MIN_PIXELS)
     if (small_path and not classify and xhi - xlo < SMALL_NARROW and not general_only
             and not edge_mode and small_mode(dv)):
         # A small triangle: one pass over its box, no span set-up (kernels/small.py).
         tested = small_triangle(t, xlo, xhi, ylo, yhi, t_edge, t_z, t_zlim, t_col, st, dv,
                                 tab, front, back, zbuf, sten)
         work[WORK_FRAGMENTS] += tested
-        if dv[D_STENCIL] != 0 and dv[D_MODE] != MODE_COLOUR:
+        if stencil_writes:
             work[WORK_STENCIL_WRITES] += tested
+            if tested > 0:
+                note_stencil_written(tb, xlo, xhi, ylo, yhi, y_lo,
+                                     (front.shape[1] + TILE_W - 1) >> TILE_SHIFT)
         if dv[D_ZWRITE] != 0 and tested > 0:
             note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, (front.shape[1] + TILE_W - 1)
                            >> TILE_SHIFT, t_zlim[t, 0], t_zlim[t, 1], dv[D_ZMASK],
-                           st[S_ZFUNC])
+                           st[S_ZFUNC], sided_bounds)
         return
     # Edge quotients carried row to row (kernels/spans.py); dummies when not stepping.
     s0, q0, r0, d0, bq0, br0 = edge_start_at(t_edge, t, 0, ylo)
@@ -266,6 +281,7 @@ def _triangle_rows(
     runs[0, 0] = xlo
     runs[0, 1] = xhi
     runs[0, 2] = TILE_PARTIAL
+    runs[0, RUN_SFREE] = 0
     nruns = 1
     next_chunk = ylo  # with classify: the first row of the next tile row
     z0 = t_z[t, 0]
@@ -327,11 +343,13 @@ def _triangle_rows(
                                                          else TILE_MIN_PIXELS):
                 nruns = classify_tiles(t, cxl, cxr, cy0, cy1, c_lo, c_hi, ty * ntx, t_edge,
                                        t_z, t_zlim, st, zbuf, tb, runs, skip, cover_blocks,
-                                       not edge_mode, zpass, zpass and zpass_spans, work)
+                                       not edge_mode, zpass, zpass and zpass_spans, work,
+                                       sbounds, tab, sten)
             else:
                 runs[0, 0] = cxl
                 runs[0, 1] = cxr
                 runs[0, 2] = TILE_PARTIAL
+                runs[0, RUN_SFREE] = 0
                 nruns = 1
         if nruns == 0 or (stored and sl > sr):
             continue  # every tile of this tile row skipped, or an empty row
@@ -368,7 +386,7 @@ def _triangle_rows(
             uy = np.uintp(y)
             if runs[r, 2] == TILE_ZPASS or runs[r, 2] == TILE_ZPASS_SPAN:
                 z_passed_row(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, tab,
-                             cbuf, zbuf, sten, vector_pack, lit_lanes)
+                             cbuf, zbuf, sten, vector_pack, lit_lanes, runs[r, RUN_SFREE] != 0)
             elif (mode == MODE_ZSTENCIL_ADD and fill_spans and vector_pack
                   and xr - xl >= FILL_MIN_SPAN - 1 and zmin >= -2147483648
                   and zmax <= 2147483647):
@@ -396,7 +414,7 @@ def _triangle_rows(
             elif mode == MODE_COLOUR:
                 _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv,
                              cbuf, zbuf, sten, front, back, tab, vector_pack, lit_spans,
-                             lit_lanes)
+                             lit_lanes, runs[r, RUN_SFREE] != 0)
             elif mode == MODE_ZSTENCIL:
                 for x in range(xl, xr + 1):
                     ux = np.uintp(x)
@@ -420,10 +438,13 @@ def _triangle_rows(
                 _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colour,
                              edge_mode and not full, st, dv, tab, front, back, zbuf, sten, tex)
     work[WORK_FRAGMENTS] += tested
-    if dv[D_STENCIL] != 0 and mode != MODE_COLOUR:
+    if stencil_writes:
         work[WORK_STENCIL_WRITES] += tested
+        if tested > 0:  # (every tile skipped: nothing written)
+            note_stencil_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx)
     if dv[D_ZWRITE] != 0 and tested > 0:  # every tile skipped: nothing written
-        note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zmin, zmax, dv[D_ZMASK], st[S_ZFUNC])
+        note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zmin, zmax, dv[D_ZMASK], st[S_ZFUNC],
+                       sided_bounds)
 
 
 @callee
@@ -457,15 +478,18 @@ def _general_row(t, y, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, t_edge, colo
 
 @inline_ir
 def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbuf, zbuf,
-                 sten, front, back, tab, vector_pack, lit_spans, lit_lanes):
+                 sten, front, back, tab, vector_pack, lit_spans, lit_lanes, sfree):
     """MODE_COLOUR: shaded span of row ``uy`` with read-only stencil, optional z,
     simple blend, into ``cbuf`` (the one colour buffer the state draws).
     ``vector_pack``: the stencil-tested loop packs colour through
     :func:`pack_rgba_i32` (same words, a conversion AVX2 vectorizes);
     ``lit_spans`` (with ``vector_pack``): spans of at least ``LIT_MIN_SPAN`` pixels
     of the replace and ONE+ONE passes run :func:`.lit.lit_span`, or with
-    ``lit_lanes``, where :func:`.lit.lanes_ok` allows, :func:`.lit.lit_span_lanes`."""
+    ``lit_lanes``, where :func:`.lit.lanes_ok` allows, :func:`.lit.lit_span_lanes`;
+    ``sfree``: the stencil test is known to pass on the whole span (the tiles'
+    stencil bounds, kernels/tiles.py), so the fast loops leave it out."""
     ztest = dv[D_ZTEST] != 0
+    stest = dv[D_STENCIL] != 0 and not sfree
     zwrite = dv[D_ZWRITE] != 0
     lt, eq, gt = cmp_bits(st[S_ZFUNC])
     blend = dv[D_CBLEND]
@@ -492,11 +516,11 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
                 and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
                              adx)):
             alpha_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
-                             bdx, adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt,
+                             bdx, adx, lt, eq, gt, zwrite, stest, slt, seq, sgt,
                              smask, sref, wm, dv[D_ZMASK], cbuf, zbuf, sten)
         elif _FULL and blend == CBLEND_SA_MSA:
             _alpha_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
-                        adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask, sref,
+                        adx, lt, eq, gt, zwrite, stest, slt, seq, sgt, smask, sref,
                         wm, keep, cbuf, zbuf, sten)
         elif (lit_spans and vector_pack and xr - xl + 1 >= LIT_MIN_SPAN
               and zmin >= -2147483648 and zmax <= 2147483647):
@@ -506,13 +530,13 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
             if lit_lanes and lanes_ok(xl, xr, x0, za, dzdx, zmin, zmax, ra, ga, ba, aa, rdx,
                                       gdx, bdx, adx):
                 lit_span_lanes(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx,
-                               bdx, adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt,
+                               bdx, adx, lt, eq, gt, zwrite, stest, slt, seq, sgt,
                                smask, sref, add, wm, dv[D_ZMASK], cbuf, zbuf, sten)
             else:
                 lit_span(uy, xl, xr, za, dzdx, x0, zmin, zmax, ra, ga, ba, aa, rdx, gdx, bdx,
-                         adx, lt, eq, gt, zwrite, dv[D_STENCIL] != 0, slt, seq, sgt, smask,
+                         adx, lt, eq, gt, zwrite, stest, slt, seq, sgt, smask,
                          sref, add, wm, keep, cbuf, zbuf, sten)
-        elif (dv[D_STENCIL] != 0 and vector_pack and zmin >= -2147483648
+        elif (stest and vector_pack and zmin >= -2147483648
               and zmax <= 2147483647):
             # Heidmann's lit pass (stencil test, ONE+ONE): the switch is tested once
             # per span, so the loop itself carries no branch on it.
@@ -530,7 +554,7 @@ def _colour_span(t, uy, xl, xr, za, dzdx, x0, y0, zmin, zmax, t_col, st, dv, cbu
                 dst = np.int64(cbuf[uy, ux])
                 out = add_sat(src, dst) if add else src
                 cbuf[uy, ux] = ((dst & keep) | (out & wm)) if ok else dst
-        elif dv[D_STENCIL] != 0:
+        elif stest:
             for x in range(xl, xr + 1):
                 ux = np.uintp(x)
                 sv = np.int64(sten[uy, ux]) & smask
@@ -669,6 +693,7 @@ def _clear_rows(c, y_lo, y_hi, c_vals, st, dv, front, back, zbuf, sten, tb):
                 row[ux] = write_z(np.int64(row[ux]), zval, zmask)
         note_z_cleared(tb, xlo, xhi, ylo, yhi, y_lo, y_hi, front.shape[1], zval, zmask)
     if planes & CLEAR_STENCIL:
+        tb[:, TB_SVALID] = TB_UNKNOWN  # found again by the next pass that asks
         wm = dv[D_SWM]
         sval = c_vals[c, 3] & wm
         for y in range(ylo, yhi + 1):
@@ -683,6 +708,8 @@ def _fragment_run(r, y_lo, y_hi, f_xy, f_z, f_rgba, r_range, st, dv, tab,
                   front, back, zbuf, sten, tb, work):
     if dv[D_ZWRITE] != 0:
         tb[:, TB_VALID] = TB_UNKNOWN  # points and lines: forget the band's depth bounds
+    if dv[D_STENCIL] != 0:
+        tb[:, TB_SVALID] = TB_UNKNOWN  # and stencil bounds
     for f in range(r_range[r, 0], r_range[r, 1]):
         y = f_xy[f, 1]
         if y < y_lo or y > y_hi or y < st[S_SY0] or y > st[S_SY1]:
@@ -712,13 +739,13 @@ def _bands_body(
     f_xy, f_z, f_rgba, r_range, r_state = frags
     (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
      small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans,
-     prefetch_planes, span_zwrite) = switches
+     prefetch_planes, span_zwrite, stencil_bounds, sided_bounds) = switches
     band_h = 1 << band_shift
     nbands = starts.shape[0] - 1
     ntiles = (front.shape[1] + TILE_W - 1) >> TILE_SHIFT
     # Tile bounds of one band: (band_h / TILE_H) tile rows of ntiles tiles.
     tb_own = np.zeros((ntiles * max(1, band_h >> TILE_H_SHIFT), TB_SIZE), np.int64)
-    runs_own = np.zeros((ntiles, 3), np.int64)
+    runs_own = np.zeros((ntiles, RUN_SIZE), np.int64)
     spans_own = np.zeros((band_h, 2), np.int64)  # a triangle's row spans in one band
     # Borrowed (kernels/borrow.py): no counted references in the inlined helpers;
     # the scratch arrays are kept alive to the end (keep_alive below).
@@ -727,6 +754,7 @@ def _bands_body(
         y_lo = b * band_h
         y_hi = min(y_lo + band_h, height) - 1
         tb[:, TB_VALID] = TB_UNKNOWN  # bounds are found again in each band, on first use
+        tb[:, TB_SVALID] = TB_UNKNOWN
         bw = borrow(work[b])  # (views borrowed too: ``work`` outlives them)
         # The state's rows, taken again only when the state changes (runs of
         # primitives share a state).
@@ -757,7 +785,8 @@ def _bands_body(
                     st, dv, tab,
                     front, back, zbuf, sten, edge_mode, general_only, skip_tiles,
                     cover_blocks, tight_tiles, step_spans, vector_pack, small_path, block_update,
-                    (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite), tb, runs,
+                    (lit_spans, lit_lanes, fill_spans, zpass_spans, span_zwrite,
+                     stencil_bounds, sided_bounds), tb, runs,
                     spans, bw,
                     tex,
                 )
@@ -785,7 +814,7 @@ def render_bands(
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
     small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
-    span_zwrite, work, tex,
+    span_zwrite, stencil_bounds, sided_bounds, work, tex,
 ):
     """Render every ``nthreads``-th band, starting with band ``tid``.
 
@@ -862,6 +891,15 @@ def render_bands(
         With ``block_update``: depth-writing colour passes ask for no z-passed tiles
         (their z-tested span loop costs about what the block rows do, and z-passed
         runs cut each row; a switch, on by default; same planes).
+    stencil_bounds : bool
+        Stencil-testing colour passes classify their tiles by the tiles' stencil
+        bounds too: skipped where the test fails for every stored value, run without
+        the per-fragment stencil test where it passes for every one (:mod:`.tiles`;
+        a switch, on by default; same planes).
+    sided_bounds : bool
+        Z writes under a zfunction without the "greater" (or "less") outcome leave
+        the tiles' upper (lower) depth bound as it was instead of widening it
+        (:func:`.tiles.note_z_written`; a switch, on by default; same planes).
     work : ndarray, shape (nbands, WORK_SIZE), int64
         Work counters (WORK_*), one row per band, added to.
     tex : tuple
@@ -877,7 +915,7 @@ def render_bands(
         states, derived, tables, front, back, zbuf, sten,
         (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans,
          vector_pack, small_path, block_update, lit_spans, lit_lanes, fill_spans,
-         zpass_spans, prefetch_planes, span_zwrite),
+         zpass_spans, prefetch_planes, span_zwrite, stencil_bounds, sided_bounds),
         work, tex)
 
 
@@ -892,7 +930,7 @@ def render_bands_borrowed(
     front, back, zbuf, sten,
     edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans, vector_pack,
     small_path, block_update, lit_spans, lit_lanes, fill_spans, zpass_spans, prefetch_planes,
-    span_zwrite, work, tex,
+    span_zwrite, stencil_bounds, sided_bounds, work, tex,
 ):
     """:func:`render_bands` on borrowed arrays (kernels/borrow.py,
     CommandBatch.borrow_arrays; the same arguments): the helpers it inlines per
@@ -911,7 +949,7 @@ def render_bands_borrowed(
         borrow(front), borrow(back), borrow(zbuf), borrow(sten),
         (edge_mode, general_only, skip_tiles, cover_blocks, tight_tiles, step_spans,
          vector_pack, small_path, block_update, lit_spans, lit_lanes, fill_spans,
-         zpass_spans, prefetch_planes, span_zwrite),
+         zpass_spans, prefetch_planes, span_zwrite, stencil_bounds, sided_bounds),
         borrow(work), (borrow(tex[0]), borrow(tex[1]), borrow(tex[2]), borrow(tex[3])))
 
 

@@ -43,9 +43,14 @@ import numpy as np
 
 from vgxsim.state.codes import (
     CMP_EQUAL,
+    CMP_GREATER_BIT,
+    CMP_LESS_BIT,
     S_ZFUNC,
     WORK_BLOCKS_COVERED,
     WORK_BLOCKS_Z_PASSED,
+    WORK_STENCIL_PASSED,
+    WORK_STENCIL_SCANNED,
+    WORK_STENCIL_SKIPPED,
     WORK_TILES_SCANNED,
     WORK_TILES_SKIPPED,
     Z24_MASK,
@@ -79,8 +84,18 @@ _CORNER_LIMIT = 4e18  # float depths below this convert to int64 monotonically
 # tile's size, one exact scan has been paid for: ski-rental, so rescans can at most
 # double the work they try to save).
 TB_VALID, TB_LO, TB_HI, TB_DEBT = 0, 1, 2, 3
-TB_SIZE = 4
+# Stencil bounds (stencil_bounds): TB_SVALID is TB_UNKNOWN or TB_EXACT, [TB_SLO,
+# TB_SHI] the stored minimum and maximum stencil values.  Found by one scan when a
+# stencil-testing colour pass first asks, forgotten by every primitive that may write
+# stencil there (never widened: the shadow faces that write stencil change it by
+# many small steps, the lit pass that reads it comes after all of them).
+TB_SVALID, TB_SLO, TB_SHI = 4, 5, 6
+TB_SIZE = 7
 TB_UNKNOWN, TB_LOOSE, TB_EXACT = 0, 1, 2
+# A run's column 3 in ``runs`` (classify_tiles): 1 where the stencil test is known
+# to pass for every fragment of the run (its tiles' stencil bounds), else 0.
+RUN_SFREE = 3
+RUN_SIZE = 4
 # A loose tile is scanned again once faces it kept cover 1 / 2**RESCAN_SHIFT of it:
 # a scan reads a tile once, but exact bounds serve every later face (a shadow pass
 # draws many faces over the same tiles), so paying for it early is the better bet.
@@ -116,6 +131,47 @@ def scan_tile(zbuf, tx, y_lo, y_hi, tb, i):
     tb[i, TB_DEBT] = 0
 
 
+@callee
+def scan_stencil(sten, tx, y_lo, y_hi, tb, i):
+    """Exact stencil bounds of tile column ``tx`` over rows ``[y_lo, y_hi]`` into
+    ``tb[i]`` (on the bytes themselves: vpminub / vpmaxub on 32 lanes)."""
+    x0 = tx << TILE_SHIFT
+    x1 = min(x0 + TILE_W, sten.shape[1]) - 1
+    lo = sten[y_lo, x0]
+    hi = lo
+    for y in range(y_lo, y_hi + 1):
+        uy = np.uintp(y)
+        for x in range(x0, x1 + 1):
+            v = sten[uy, np.uintp(x)]
+            lo = min(lo, v)
+            hi = max(hi, v)
+    tb[i, TB_SVALID] = TB_EXACT
+    tb[i, TB_SLO] = lo
+    tb[i, TB_SHI] = hi
+
+
+@inline
+def stencil_passes_in(tab, lo, hi):
+    """How many stored stencil values in ``[lo, hi]`` pass the state's stencil test:
+    ``tab[2]`` is its table of outcomes by stored value (vgxsim/state/derive.py: the
+    test with the state's function, reference and mask, the table the general path
+    reads), so masks need no interval reasoning."""
+    n = 0
+    for v in range(lo, hi + 1):
+        n += tab[2, v] != 0
+    return n
+
+
+@inline
+def note_stencil_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx):
+    """After a primitive that may write stencil in columns ``[xlo, xhi]``, rows
+    ``[ylo, yhi]`` of the band starting at row ``y_lo``: forget those tiles'
+    stencil bounds."""
+    for ty in range((ylo - y_lo) >> TILE_H_SHIFT, ((yhi - y_lo) >> TILE_H_SHIFT) + 1):
+        for tx in range(xlo >> TILE_SHIFT, (xhi >> TILE_SHIFT) + 1):
+            tb[ty * ntx + tx, TB_SVALID] = TB_UNKNOWN
+
+
 @inline
 def z_fails_everywhere(zfunc, zlo, zhi, blo, bhi):
     """No fragment depth in ``[zlo, zhi]`` passes ``zfunc`` against any stored depth
@@ -142,7 +198,7 @@ def z_passes_everywhere(zfunc, zlo, zhi, blo, bhi):
 
 @callee
 def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim, st, zbuf,
-                   tb, runs, skip, cover, merge, zpass, zspan, work):
+                   tb, runs, skip, cover, merge, zpass, zspan, work, sbounds, tab, sten):
     """Classify the tiles of triangle ``t``'s rectangle in one tile row of a band;
     write the runs of adjacent non-skipped tiles of one class into ``runs``.
 
@@ -164,9 +220,10 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
     zbuf : ndarray, shape (H, W), int32
     tb : ndarray, shape (n, TB_SIZE), int64
         The band's tile bounds (TB_*), filled in on first use.
-    runs : ndarray, shape (ntiles, 3), int64
-        Output: ``(x first, x last, class)`` per run: TILE_ZPASS, TILE_ZPASS_SPAN,
-        TILE_FULL or TILE_PARTIAL.
+    runs : ndarray, shape (ntiles, RUN_SIZE), int64
+        Output: ``(x first, x last, class, stencil free)`` per run: class TILE_ZPASS,
+        TILE_ZPASS_SPAN, TILE_FULL or TILE_PARTIAL; column RUN_SFREE 1 where the
+        stencil test is known to pass everywhere in the run (with ``sbounds``).
     skip, cover : bool
         Whether to test depth bounds (the caller has checked that the z test is on
         and z failure is a no-op) and whether to test full coverage.
@@ -186,6 +243,17 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
         one ``TILE_ZPASS_SPAN`` run (its rows clip to the row's span).
     work : ndarray, shape (WORK_SIZE,), int64
         Work counters of this band.
+    sbounds : bool
+        Also decide the stencil test from the tiles' stencil bounds (the caller has
+        checked that the state is a colour pass, MODE_COLOUR, with the stencil test
+        on: a fragment failing it changes nothing).  A tile where no stored value
+        passes is skipped (WORK_STENCIL_SKIPPED); one where every value passes runs
+        without the per-fragment stencil test (RUN_SFREE, WORK_STENCIL_PASSED).
+    tab : ndarray, shape (3, 256), uint8
+        The state's stencil tables (derive.py); ``tab[2]``: the stencil test's
+        outcome by stored value.
+    sten : ndarray, shape (H, W), uint8
+        The stencil plane (read by the scans of ``sbounds``).
 
     Returns
     -------
@@ -238,6 +306,21 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
                     work[WORK_TILES_SKIPPED] += 1
                 elif zpass:
                     passes = z_passes_everywhere(zfunc, rlo, rhi, tb[i, TB_LO], tb[i, TB_HI])
+        sfree = 0
+        if sbounds and cls != TILE_SKIP:
+            i = base + tx
+            if tb[i, TB_SVALID] == TB_UNKNOWN:
+                scan_stencil(sten, tx, y_lo, y_hi, tb, i)
+                work[WORK_STENCIL_SCANNED] += 1
+            slo = tb[i, TB_SLO]
+            shi = tb[i, TB_SHI]
+            npass = stencil_passes_in(tab, slo, shi)
+            if npass == 0:
+                cls = TILE_SKIP
+                work[WORK_STENCIL_SKIPPED] += 1
+            elif npass == shi - slo + 1:
+                sfree = 1
+                work[WORK_STENCIL_PASSED] += 1
         if cls == TILE_PARTIAL and cover and covers(edge, cx0, ylo) and covers(
                 edge, cx1, ylo) and covers(edge, cx0, yhi) and covers(edge, cx1, yhi):
             cls = TILE_FULL
@@ -256,20 +339,24 @@ def classify_tiles(t, xlo, xhi, ylo, yhi, y_lo, y_hi, base, t_edge, t_z, t_zlim,
                 merge and not zp_prev and not zp)):
             # Span rows solve their edges once per row anyway: one long run (a long
             # vectorized loop) beats a run per class; it is full only if all tiles are
-            # (z-passed runs of both kinds: a z-passed run clipped to the row's span).
+            # (z-passed runs of both kinds: a z-passed run clipped to the row's span),
+            # and free of the stencil test only if all tiles are (a run per tile
+            # costs a span call each, more than the test saves over a tile's row).
             runs[nruns - 1, 1] = cx1
+            runs[nruns - 1, RUN_SFREE] &= sfree
             if cls != prev:
                 runs[nruns - 1, 2] = TILE_ZPASS_SPAN if zp else TILE_PARTIAL
         else:
             runs[nruns, 0] = cx0
             runs[nruns, 1] = cx1
             runs[nruns, 2] = cls
+            runs[nruns, RUN_SFREE] = sfree
             nruns += 1
     return nruns
 
 
 @inline
-def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc):
+def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc, sided):
     """After a primitive wrote depths in ``[zlo, zhi]`` (unwrapped) through
     ``zmask`` somewhere in columns ``[xlo, xhi]``, rows ``[ylo, yhi]`` of the band
     starting at row ``y_lo`` (``ntx`` tiles a tile row): widen the valid bounds of
@@ -277,7 +364,12 @@ def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc):
     them when the stored value is not simply the written one (a partial mask, or a
     depth that wraps to 24 bits).  Under zfunction(ZF_EQUAL) a fragment writes only
     where its depth equals the stored one, so a full-mask write of a 24-bit value
-    leaves the plane, and any bounds within 24 bits, unchanged."""
+    leaves the plane, and any bounds within 24 bits, unchanged.  With ``sided``
+    (CommandBatch.sided_bounds): a zfunction without the "greater" outcome
+    (ZF_LESS, ZF_LEQUAL) writes only depths at most the stored ones, so no value
+    rises and ``hi`` still bounds the tile; without "less" (ZF_GREATER, ZF_GEQUAL)
+    ``lo`` does (Heidmann's ambient and lit passes, ZF_LEQUAL: a lit triangle's
+    far corners no longer push ``hi`` out, which kept its hidden faces' tiles)."""
     full = zmask == Z24_MASK
     exact = full and zlo >= ZMIN24 and zhi <= ZMAX24
     for ty in range((ylo - y_lo) >> TILE_H_SHIFT, ((yhi - y_lo) >> TILE_H_SHIFT) + 1):
@@ -290,8 +382,10 @@ def note_z_written(tb, xlo, xhi, ylo, yhi, y_lo, ntx, zlo, zhi, zmask, zfunc):
                 continue
             if exact:
                 # Bounds still contain every depth, but the old extreme may be gone.
-                tb[i, TB_LO] = min(tb[i, TB_LO], zlo)
-                tb[i, TB_HI] = max(tb[i, TB_HI], zhi)
+                if not (sided and (zfunc & CMP_LESS_BIT) == 0):
+                    tb[i, TB_LO] = min(tb[i, TB_LO], zlo)
+                if not (sided and (zfunc & CMP_GREATER_BIT) == 0):
+                    tb[i, TB_HI] = max(tb[i, TB_HI], zhi)
                 if tb[i, TB_VALID] == TB_EXACT:
                     tb[i, TB_VALID] = TB_LOOSE
                     tb[i, TB_DEBT] = 0

@@ -43,6 +43,9 @@ from vgxsim.state.codes import (
     WORK_BLOCKS_Z_PASSED,
     WORK_FRAGMENTS,
     WORK_SIZE,
+    WORK_STENCIL_PASSED,
+    WORK_STENCIL_SCANNED,
+    WORK_STENCIL_SKIPPED,
     WORK_STENCIL_WRITES,
     WORK_TILES_SCANNED,
     WORK_TILES_SKIPPED,
@@ -58,7 +61,9 @@ __all__ = ["CommandBatch", "CLEAR_COLOUR", "CLEAR_Z", "CLEAR_STENCIL", "WORK_NAM
 WORK_NAMES = tuple(name for _, name in sorted([
     (WORK_FRAGMENTS, "fragments"), (WORK_TILES_SKIPPED, "tiles_skipped"),
     (WORK_BLOCKS_COVERED, "blocks_covered"), (WORK_STENCIL_WRITES, "stencil_writes"),
-    (WORK_TILES_SCANNED, "tiles_scanned"), (WORK_BLOCKS_Z_PASSED, "blocks_z_passed")]))
+    (WORK_TILES_SCANNED, "tiles_scanned"), (WORK_BLOCKS_Z_PASSED, "blocks_z_passed"),
+    (WORK_STENCIL_SCANNED, "stencil_scanned"), (WORK_STENCIL_SKIPPED, "stencil_skipped"),
+    (WORK_STENCIL_PASSED, "stencil_untested")]))
 
 # Bands are 2**shift rows, 32 to 256.  Tall bands keep the triangle records a band
 # reads dense in memory (many small triangles are latency-bound on those reads);
@@ -222,12 +227,28 @@ class CommandBatch:
         their vectorized z-tested span loop costs about what the block update's
         loop does, and z-passed tiles would cut each row into one run per class
         (kernels/render.py _triangle_rows); on by default, the same planes either way.
+    stencil_bounds : bool
+        Per tile, the bounds of the stored stencil values (found by one scan when a
+        stencil-testing colour pass first asks, forgotten by every primitive that
+        may write stencil there): that pass skips a tile where its stencil test
+        fails for every value in the bounds and runs one where it passes for every
+        value without the per-fragment stencil test (vgxsim/kernels/tiles.py;
+        Heidmann's lit pass after the shadow faces); on by default, the same planes
+        either way.
+    sided_bounds : bool
+        A triangle that writes z under ZF_LESS or ZF_LEQUAL (ZF_GREATER, ZF_GEQUAL)
+        can only lower (raise) stored depths, so it widens only the lower (upper)
+        depth bound of the tiles it wrote (vgxsim/kernels/tiles.py note_z_written;
+        Heidmann's ambient and lit passes); on by default, the same planes either
+        way (tighter bounds skip more tiles).
     counters : ndarray, shape (WORK_SIZE,), int64
         Work done since the batch was made or :meth:`reset_counters`, in the order
         of ``WORK_NAMES``: fragments tested, (triangle, tile) pairs skipped, tiles
         covered without edge tests, fragments of passes that may write stencil,
         tiles whose depth bounds were read from the z plane, of the covered tiles
-        those run without z tests.  :meth:`work` gives them by name.
+        those run without z tests; tiles whose stencil bounds were read from the
+        stencil plane, (triangle, tile) pairs skipped by them and run without the
+        stencil test by them.  :meth:`work` gives them by name.
     """
 
     skip_tiles = True
@@ -249,6 +270,8 @@ class CommandBatch:
     band_workers = True
     cache_tables = True
     span_zwrite = True
+    stencil_bounds = True
+    sided_bounds = True
 
     def __init__(self, framebuffer: Framebuffer):
         self.fb = framebuffer
@@ -824,7 +847,8 @@ class CommandBatch:
             self.skip_tiles, self.cover_blocks, self.tight_tiles, self.step_spans,
             self.vector_pack, self.small_path, self.block_update, self.lit_spans, self.lit_lanes,
             self.fill_spans, self.zpass_spans,
-            self.prefetch_planes, self.span_zwrite, work,
+            self.prefetch_planes, self.span_zwrite, self.stencil_bounds, self.sided_bounds,
+            work,
             (self.t_tex, *tex_table),
         )
         nthreads = min(nthreads, nbands)

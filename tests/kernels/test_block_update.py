@@ -165,7 +165,10 @@ def test_block_update_changes_no_plane_on_random_scenes():
         assert _same_work(on, off), (i, on, off)
         assert off["blocks_z_passed"] == 0
         passed += on["blocks_z_passed"]
-    assert passed > 200  # the scenes do take the block update
+    # The scenes do take the block update (197 times with stencil_bounds on, which
+    # skips the tiles of a stencil-testing pass that no stored stencil value passes:
+    # those are no longer z-passed blocks; 200+ before it).
+    assert passed > 150
 
 
 def test_block_update_matches_naive():

@@ -121,4 +121,11 @@ WORK_BLOCKS_COVERED = 2  # tile rows of a triangle run without edge tests
 WORK_STENCIL_WRITES = 3  # fragments whose stencil value the pass may change
 WORK_TILES_SCANNED = 4  # tiles whose depth bounds were found by reading the z plane
 WORK_BLOCKS_Z_PASSED = 5  # of those covered, tile rows run without z tests (z proven to pass)
-WORK_SIZE = 6
+# Stencil bounds (kernels/tiles.py, CommandBatch.stencil_bounds): tiles whose stencil
+# bounds were found by reading the stencil plane; (triangle, tile) pairs of a
+# stencil-testing colour pass skipped because the test fails for every stored value,
+# and run without the per-fragment stencil test because it passes for every one.
+WORK_STENCIL_SCANNED = 6
+WORK_STENCIL_SKIPPED = 7
+WORK_STENCIL_PASSED = 8
+WORK_SIZE = 9
