@@ -42,6 +42,27 @@ def band_counts(py0, py1, lo, hi, band_shift, nbands, counts):
             counts[b] += 1
 
 
+@jit
+def mean_rows(py0, py1, nprims, height):
+    """Mean number of window rows (``0 .. height - 1``) of primitives ``0 .. nprims - 1``
+    (rows ``py0 .. py1``; none for a dead one), for the choice of band height
+    (vgxsim/batch.py ``tall_bands``).
+
+    Parameters
+    ----------
+    py0, py1 : ndarray, shape (P,), int64
+    nprims, height : int
+
+    Returns
+    -------
+    float
+    """
+    total = 0
+    for p in range(nprims):
+        total += max(min(py1[p], height - 1) - max(py0[p], 0) + 1, 0)
+    return total / max(nprims, 1)
+
+
 @inline_ir
 def _copy_record(s, i, t_edge, t_box, t_z, t_zlim, t_col, t_state, g_edge, g_box, g_z,
                  g_zlim, g_col, g_state):
