@@ -86,6 +86,7 @@ GATHER_MAX = 1 << 20  # binned entries above which they are not (the copy's memo
 TABLES_MEMO = 64  # distinct state tables a batch keeps derived (cache_tables)
 TALL_MIN = 4096  # triangles in a flush from which it may take tall_bands
 TALL_ROWS = 16.0  # mean rows of a flush's primitives up to which it takes tall_bands
+TALL_COPY_BANDS = 2  # tall bands up to which records are not copied into band order
 
 
 def _cuts(n: int, parts: int) -> list[tuple[int, int]]:
@@ -230,8 +231,9 @@ class CommandBatch:
         rows, eight a thread: binning and the copies into band order cost small
         triangles more than the band's cache locality saves them (200k 10-pixel
         triangles, 1 thread, CPU ns a triangle: 328 with 4 bands, 253 with one);
-        on by default, a switch that changes nothing drawn (bands are disjoint rows,
-        tile rows the same).
+        Up to ``TALL_COPY_BANDS`` such bands read their records where they are
+        (``band_records`` then copies nothing).  On by default, a switch that
+        changes nothing drawn (bands are disjoint rows, tile rows the same).
     span_zwrite : bool
         With ``block_update``: depth-writing colour passes (blend
         replace or ONE+ONE; Heidmann's ambient pass) do not ask for z-passed tiles:
@@ -348,8 +350,14 @@ class CommandBatch:
         self.p_y1 = _grow(self.p_y1, stop)
         clip = scissor is not None
         sx0, sx1, sy0, sy1 = (int(v) for v in scissor) if clip else (0, 0, 0, 0)
-        queue_triangles(self.t_box, start, end, clip, sx0, sx1, sy0, sy1, self.p_kind,
-                        self.p_ref, self.p_y0, self.p_y1, self.nprims)
+        nthreads = threads.get_threads()
+        at = self.nprims
+        # Each record writes its own primitive: chunks run side by side, on the
+        # worker threads for a call large enough to be worth the hand-off.
+        cuts = _cuts(n, nthreads if nthreads > 1 and n >= PARALLEL_FRONT else 1)
+        _run_chunks(len(cuts) > 1, nthreads, lambda a, b: queue_triangles(
+            self.t_box, start + a, start + b, clip, sx0, sx1, sy0, sy1, self.p_kind,
+            self.p_ref, self.p_y0, self.p_y1, at + a), cuts)
         self.nprims = stop
 
     def _grow_records(self, end: int) -> None:
@@ -814,8 +822,11 @@ class CommandBatch:
         shift = band_shift(height, nthreads, tall)
         nbands = (height + (1 << shift) - 1) >> shift
         work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
+        # Tall bands: two bands read half of the records each, dense enough for the
+        # hardware prefetcher, so they are not copied (the copy costs as much CPU
+        # as it saves the band kernel, on the threads that would run it).
         ordered = (self.band_records and not textured and nbands > 1
-                   and self.ntris >= GATHER_MIN)
+                   and self.ntris >= GATHER_MIN and not (tall and nbands <= TALL_COPY_BANDS))
         got = self._scatter(shift, nbands, nthreads) if ordered and self.scatter_bins else None
         if got is not None:
             starts, items, prims, records = got

@@ -6,9 +6,10 @@ instead of bands of at most 256 rows, eight a thread.  Scenes of small triangles
 (most a few pixels, some slivers and a few wide ones crossing bands, dead ones:
 culled and zero-area), clears, points and lines, under states switched between
 primitives (z only, z + stencil INCR/DECR, a stencil test with ONE+ONE blending,
-culling, a scissor) are rendered with the switch on and off on one and two threads
-(a window height that is not a power of two: on two threads the second band is
-short) and with the records copied into band order or not; planes and the work
+culling, a scissor) are rendered with the switch on and off on one, two and three
+threads (a window height that is not a power of two: the last band is short; on
+three threads the tall bands' records are copied into band order, on fewer they
+are read in place) and with band_records on and off; planes and the work
 counters of fragments and tiles must be identical, the planes equal to the naive
 reference's, and the tall path must have been taken.
 """
@@ -36,7 +37,8 @@ from vgxsim.state.raster import (
     OP_INCR,
 )
 
-W, H = 90, 300  # tall: one band of 512 rows on one thread, 256 + 44 rows on two
+W, H = 90, 300  # tall: one band of 512 rows on one thread, 256 + 44 rows on two,
+# 128 + 128 + 44 on three
 
 
 def _states():
@@ -106,7 +108,7 @@ def _drawn(work):
     return {k: v for k, v in work.items() if k != "tiles_scanned"}
 
 
-@pytest.mark.parametrize("nthreads", [1, 2])
+@pytest.mark.parametrize("nthreads", [1, 2, 3])
 def test_tall_bands_change_no_plane_and_no_counter(monkeypatch, nthreads):
     monkeypatch.setattr(batch_mod, "TALL_MIN", 64)
     monkeypatch.setattr(batch_mod, "GATHER_MIN", 64)
