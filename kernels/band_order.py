@@ -18,8 +18,11 @@ kernels/render.py bin_primitives lists them.
 
 from __future__ import annotations
 
+import numpy as np
+
 from vgxsim.state.codes import KIND_TRIANGLE
 
+from .clip import ONE
 from .options import inline_ir, jit
 
 
@@ -40,6 +43,44 @@ def band_counts(py0, py1, lo, hi, band_shift, nbands, counts):
         b1 = min(py1[p] >> band_shift, nbands - 1)
         for b in range(b0, b1 + 1):
             counts[b] += 1
+
+
+@jit
+def band_slots(yf, tris, band_shift, nbands, slot):
+    """Where each triangle of a call writes its set-up record (CommandBatch.band_slots):
+    grouped by the band of its first row, in drawing order within a band (a stable
+    counting sort), so that a band reads its triangles' records front to back
+    without the flush copying them.
+
+    The key is the first row of the triangle's set-up box (kernels/setup.py:
+    ``ceil(min y)``); it only places records, so a key that differs from the rows
+    the flush bins by (a scissor, a dead triangle, another band height by then)
+    changes where a record sits, never what is drawn.
+
+    Parameters
+    ----------
+    yf : ndarray, shape (Nv,), int64
+        Fixed-point window y of the vertices.
+    tris : ndarray, shape (Nt, 3), int64
+    band_shift, nbands : int
+        Bands of ``2**band_shift`` rows (vgxsim/batch.py band_shift).
+    slot : ndarray, shape (Nt,), int64
+        Output: triangle ``t``'s record offset from the call's first record (a
+        permutation of ``0 .. Nt - 1``).
+    """
+    n = tris.shape[0]
+    counts = np.zeros(nbands + 1, np.int64)
+    for t in range(n):
+        y = min(yf[tris[t, 0]], min(yf[tris[t, 1]], yf[tris[t, 2]]))
+        b = min(max(-((-y) // ONE), 0) >> band_shift, nbands - 1)
+        slot[t] = b  # the key, for the second pass
+        counts[b + 1] += 1
+    for b in range(nbands):
+        counts[b + 1] += counts[b]
+    for t in range(n):
+        b = slot[t]
+        slot[t] = counts[b]
+        counts[b] += 1
 
 
 @jit
