@@ -235,13 +235,14 @@ class CommandBatch:
         (one band, nothing binned, on one thread) instead of bands of at most 256
         rows, eight a thread: binning and the copies into band order cost small
         triangles more than the band's cache locality saves them (200k 10-pixel
-        triangles, 1 thread, CPU ns a triangle: 328 with 4 bands, 253 with one);
+        triangles, 1 thread, CPU ns a triangle: 328 with 4 bands, 253 with one).
         Up to ``TALL_COPY_BANDS`` such bands read their records where they are
-        (``band_records`` then copies nothing).  On by default, a switch that
-        changes nothing drawn (bands are disjoint rows, tile rows the same).
+        (``band_records`` then copies nothing; ``band_slots`` places them).  On by
+        default, a switch that changes nothing drawn (bands are disjoint rows, tile
+        rows the same).
     band_slots : bool
         With ``tall_bands``: a call of at least ``TALL_MIN`` triangles, drawn where
-        tall bands are two to ``TALL_COPY_BANDS`` (several threads), writes its
+        there would be two to ``TALL_COPY_BANDS`` tall bands (two threads), writes its
         set-up records grouped by the tall band of each triangle's first row, in
         drawing order within a band (kernels/band_order.py band_slots); the
         primitives stay in drawing order and point at them.  The bands, which read
