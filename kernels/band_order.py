@@ -46,7 +46,7 @@ def band_counts(py0, py1, lo, hi, band_shift, nbands, counts):
 
 
 @jit
-def band_slots(yf, tris, band_shift, nbands, slot):
+def band_slots(yf, tris, band_shift, nbands, max_rows, slot):
     """Where each triangle of a call writes its set-up record (CommandBatch.band_slots):
     grouped by the band of its first row, in drawing order within a band (a stable
     counting sort), so that a band reads its triangles' records front to back
@@ -64,23 +64,38 @@ def band_slots(yf, tris, band_shift, nbands, slot):
     tris : ndarray, shape (Nt, 3), int64
     band_shift, nbands : int
         Bands of ``2**band_shift`` rows (vgxsim/batch.py band_shift).
+    max_rows : float
+        The most rows the call's triangles may span on average (their y extent
+        plus one) for it to be placed: tall bands are for small triangles
+        (vgxsim/batch.py ``TALL_ROWS``), a flush of others copies records anyway.
     slot : ndarray, shape (Nt,), int64
         Output: triangle ``t``'s record offset from the call's first record (a
-        permutation of ``0 .. Nt - 1``).
+        permutation of ``0 .. Nt - 1``); unspecified when not placed.
+
+    Returns
+    -------
+    bool
+        Whether the call is placed (else its records go in drawing order).
     """
     n = tris.shape[0]
     counts = np.zeros(nbands + 1, np.int64)
+    rows = 0.0
     for t in range(n):
-        y = min(yf[tris[t, 0]], min(yf[tris[t, 1]], yf[tris[t, 2]]))
+        y0, y1, y2 = yf[tris[t, 0]], yf[tris[t, 1]], yf[tris[t, 2]]
+        y = min(y0, min(y1, y2))
+        rows += (max(y0, max(y1, y2)) - y) / ONE + 1.0
         b = min(max(-((-y) // ONE), 0) >> band_shift, nbands - 1)
         slot[t] = b  # the key, for the second pass
         counts[b + 1] += 1
+    if rows > max_rows * max(n, 1):
+        return False
     for b in range(nbands):
         counts[b + 1] += counts[b]
     for t in range(n):
         b = slot[t]
         slot[t] = counts[b]
         counts[b] += 1
+    return True
 
 
 @jit

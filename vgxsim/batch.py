@@ -383,8 +383,9 @@ class CommandBatch:
         """Per triangle of a call, its record's offset from the call's first, grouped
         by the tall band of its first row (``band_slots``; kernels/band_order.py), or
         None: records in drawing order (the switch off, or a call that tall bands
-        would not read in place: under ``TALL_MIN`` triangles, one band, or more
-        than ``TALL_COPY_BANDS``, whose flush copies records anyway)."""
+        would not read in place: under ``TALL_MIN`` triangles, of triangles of more
+        than ``TALL_ROWS`` rows on average, one band, or more than
+        ``TALL_COPY_BANDS``, whose flush copies records anyway)."""
         nt = tris.shape[0]
         if not (self.band_slots and self.tall_bands) or nt < TALL_MIN:
             return None
@@ -394,8 +395,7 @@ class CommandBatch:
         if nbands <= 1 or nbands > TALL_COPY_BANDS:
             return None
         slot = self._scratch("slot", nt)
-        band_slots(yf, tris, shift, nbands, slot)
-        return slot
+        return slot if band_slots(yf, tris, shift, nbands, TALL_ROWS, slot) else None
 
     def _grow_records(self, end: int) -> None:
         """Grow the set-up record arrays to hold ``end`` records (capacity is kept
