@@ -237,7 +237,7 @@ class CommandBatch:
         triangles more than the band's cache locality saves them (200k 10-pixel
         triangles, 1 thread, CPU ns a triangle: 328 with 4 bands, 253 with one).
         Up to ``TALL_COPY_BANDS`` such bands read their records where they are
-        (``band_records`` then copies nothing; ``band_slots`` places them).  On by
+        when ``band_slots`` placed every one (``band_records`` then copies nothing).  On by
         default, a switch that changes nothing drawn (bands are disjoint rows, tile
         rows the same).
     band_slots : bool
@@ -395,7 +395,10 @@ class CommandBatch:
         if nbands <= 1 or nbands > TALL_COPY_BANDS:
             return None
         slot = self._scratch("slot", nt)
-        return slot if band_slots(yf, tris, shift, nbands, TALL_ROWS, slot) else None
+        if not band_slots(yf, tris, shift, nbands, TALL_ROWS, slot):
+            return None
+        self.nplaced += nt
+        return slot
 
     def _grow_records(self, end: int) -> None:
         """Grow the set-up record arrays to hold ``end`` records (capacity is kept
@@ -476,6 +479,7 @@ class CommandBatch:
         self._state_rows: list[np.ndarray] = []
         self.nprims = 0
         self.ntris = 0
+        self.nplaced = 0  # records that band_slots placed (:meth:`_band_slots`)
         self.nfrags = 0
         self.nruns = 0
         self.nclears = 0
@@ -855,11 +859,13 @@ class CommandBatch:
         shift = band_shift(height, nthreads, tall)
         nbands = (height + (1 << shift) - 1) >> shift
         work = np.zeros((nbands, WORK_SIZE), np.int64)  # one row per band: no sharing
-        # Tall bands: two bands read half of the records each, dense enough for the
-        # hardware prefetcher, so they are not copied (the copy costs as much CPU
-        # as it saves the band kernel, on the threads that would run it).
+        # Tall bands whose records their calls placed by band (band_slots) read them
+        # in place, front to back: a copy would cost more than it saves.  (Records
+        # in drawing order are copied: read in place, every other one, they cost
+        # the band kernel more than the copy.)
+        placed = tall and nbands <= TALL_COPY_BANDS and self.nplaced == self.ntris
         ordered = (self.band_records and not textured and nbands > 1
-                   and self.ntris >= GATHER_MIN and not (tall and nbands <= TALL_COPY_BANDS))
+                   and self.ntris >= GATHER_MIN and not placed)
         got = self._scatter(shift, nbands, nthreads) if ordered and self.scatter_bins else None
         if got is not None:
             starts, items, prims, records = got

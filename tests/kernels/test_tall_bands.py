@@ -8,8 +8,8 @@ culled and zero-area), clears, points and lines, under states switched between
 primitives (z only, z + stencil INCR/DECR, a stencil test with ONE+ONE blending,
 culling, a scissor) are rendered with the switch on and off on one, two and three
 threads (a window height that is not a power of two: the last band is short; on
-three threads the tall bands' records are copied into band order, on fewer they
-are read in place) and with band_records on and off; planes and the work
+two threads the records are placed by band and read in place, else copied into
+band order) and with band_records and band_slots on and off; planes and the work
 counters of fragments and tiles must be identical, the planes equal to the naive
 reference's, and the tall path must have been taken.
 """
