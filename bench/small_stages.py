@@ -9,8 +9,11 @@ process CPU time spent in it (cProfile's own time, so nested stages do not count
 twice), in ns per triangle.  The stages are the functions of the array path:
 as_homogeneous / transform_points / clip_triangles / project_snap, or front_vertices
 (front end), setup_triangles_states (kernels/setup.py; setup_triangles_borrowed with
-CommandBatch.borrow_arrays), bin_primitives, scatter_records and gather_band_records
-(binning), render_bands (the band kernel; render_bands_borrowed likewise).  Process
+CommandBatch.borrow_arrays; setup_triangles_slots(_borrowed) where band_slots places
+the records, after kernels/band_order.py band_slots), bin_primitives, scatter_records
+and gather_band_records (binning; none of them for one tall band, CommandBatch.tall_bands,
+whose choice reads mean_rows), render_bands (the band kernel; render_bands_borrowed
+likewise).  Process
 CPU time, not wall time: the machine this runs on is usually shared, and CPU time is
 the steadier figure.
 ``--ab SWITCH`` runs each round twice, with the switch SWITCH (a CommandBatch

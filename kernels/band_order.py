@@ -18,8 +18,11 @@ kernels/render.py bin_primitives lists them.
 
 from __future__ import annotations
 
+import numpy as np
+
 from vgxsim.state.codes import KIND_TRIANGLE
 
+from .clip import ONE
 from .options import inline_ir, jit
 
 
@@ -40,6 +43,80 @@ def band_counts(py0, py1, lo, hi, band_shift, nbands, counts):
         b1 = min(py1[p] >> band_shift, nbands - 1)
         for b in range(b0, b1 + 1):
             counts[b] += 1
+
+
+@jit
+def band_slots(yf, tris, band_shift, nbands, max_rows, slot):
+    """Where each triangle of a call writes its set-up record (CommandBatch.band_slots):
+    grouped by the band of its first row, in drawing order within a band (a stable
+    counting sort), so that a band reads its triangles' records front to back
+    without the flush copying them.
+
+    The key is the first row of the triangle's set-up box (kernels/setup.py:
+    ``ceil(min y)``); it only places records, so a key that differs from the rows
+    the flush bins by (a scissor, a dead triangle, another band height by then)
+    changes where a record sits, never what is drawn.
+
+    Parameters
+    ----------
+    yf : ndarray, shape (Nv,), int64
+        Fixed-point window y of the vertices.
+    tris : ndarray, shape (Nt, 3), int64
+    band_shift, nbands : int
+        Bands of ``2**band_shift`` rows (vgxsim/batch.py band_shift).
+    max_rows : float
+        The most rows the call's triangles may span on average (their y extent
+        plus one) for it to be placed: tall bands are for small triangles
+        (vgxsim/batch.py ``TALL_ROWS``), a flush of others copies records anyway.
+    slot : ndarray, shape (Nt,), int64
+        Output: triangle ``t``'s record offset from the call's first record (a
+        permutation of ``0 .. Nt - 1``); unspecified when not placed.
+
+    Returns
+    -------
+    bool
+        Whether the call is placed (else its records go in drawing order).
+    """
+    n = tris.shape[0]
+    counts = np.zeros(nbands + 1, np.int64)
+    rows = 0.0
+    for t in range(n):
+        y0, y1, y2 = yf[tris[t, 0]], yf[tris[t, 1]], yf[tris[t, 2]]
+        y = min(y0, min(y1, y2))
+        rows += (max(y0, max(y1, y2)) - y) / ONE + 1.0
+        b = min(max(-((-y) // ONE), 0) >> band_shift, nbands - 1)
+        slot[t] = b  # the key, for the second pass
+        counts[b + 1] += 1
+    if rows > max_rows * max(n, 1):
+        return False
+    for b in range(nbands):
+        counts[b + 1] += counts[b]
+    for t in range(n):
+        b = slot[t]
+        slot[t] = counts[b]
+        counts[b] += 1
+    return True
+
+
+@jit
+def mean_rows(py0, py1, nprims, height):
+    """Mean number of window rows (``0 .. height - 1``) of primitives ``0 .. nprims - 1``
+    (rows ``py0 .. py1``; none for a dead one), for the choice of band height
+    (vgxsim/batch.py ``tall_bands``).
+
+    Parameters
+    ----------
+    py0, py1 : ndarray, shape (P,), int64
+    nprims, height : int
+
+    Returns
+    -------
+    float
+    """
+    total = 0
+    for p in range(nprims):
+        total += max(min(py1[p], height - 1) - max(py0[p], 0) + 1, 0)
+    return total / max(nprims, 1)
 
 
 @inline_ir

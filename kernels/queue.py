@@ -18,8 +18,8 @@ from .options import jit
 
 
 @jit
-def queue_triangles(t_box, start, end, clip, sx0, sx1, sy0, sy1, p_kind, p_ref, p_y0, p_y1,
-                    at):
+def queue_triangles(t_box, start, end, slot, rec0, clip, sx0, sx1, sy0, sy1, p_kind, p_ref,
+                    p_y0, p_y1, at):
     """Records ``start .. end - 1`` as primitives ``at .. at + end - start - 1``.
 
     Parameters
@@ -28,6 +28,11 @@ def queue_triangles(t_box, start, end, clip, sx0, sx1, sy0, sy1, p_kind, p_ref, 
         Set-up boxes (x0, x1, y0, y1; a dead record has an empty one).
     start, end : int
         The records to queue.
+    slot : ndarray, shape (end - start,) or (0,), int64
+        Where these triangles put their records (kernels/band_order.py band_slots,
+        offsets from the call's first record ``rec0``): primitive ``at + k`` is
+        record ``rec0 + slot[k]``; empty: record ``start + k``.
+    rec0 : int
     clip : bool
         Cut the rows to the scissor ``sx0 .. sx1, sy0 .. sy1`` (inclusive) and give
         a triangle whose box misses it, or is empty, no row (``p_y1 = -1``).  False:
@@ -35,8 +40,10 @@ def queue_triangles(t_box, start, end, clip, sx0, sx1, sy0, sy1, p_kind, p_ref, 
     p_kind, p_ref, p_y0, p_y1 : ndarray, shape (P,), int64
         The batch's primitive columns, written at ``at ..``.
     """
-    for t in range(start, end):
-        p = at + t - start
+    placed = slot.shape[0] > 0
+    for r in range(start, end):
+        p = at + r - start
+        t = rec0 + slot[r - start] if placed else r
         p_kind[p] = KIND_TRIANGLE
         p_ref[p] = t
         y0 = t_box[t, 2]

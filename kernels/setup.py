@@ -166,6 +166,36 @@ def setup_triangles_borrowed(
         borrow(t_state), offset)
 
 
+@jit
+def setup_triangles_slots(
+    xf, yf, zw, col, tris, src, flat_col, states, culls, flat, want_colour,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state, offset, slot,
+):
+    """:func:`setup_triangles_states` writing triangle ``t``'s record to slot
+    ``offset + slot[t]`` (``slot``: shape (Nt,), int64; kernels/band_order.py
+    band_slots groups a call's records by band, CommandBatch.band_slots).  The
+    records are the same, in other slots."""
+    for t in range(tris.shape[0]):
+        _setup_one(xf, yf, zw, col, tris, src, flat_col, states[t], culls[t], flat,
+                   want_colour, t_edge, t_box, t_z, t_zlim, t_col, t_state, t,
+                   offset + slot[t])
+    return offset + tris.shape[0]
+
+
+@jit
+def setup_triangles_slots_borrowed(
+    xf, yf, zw, col, tris, src, flat_col, states, culls, flat, want_colour,
+    t_edge, t_box, t_z, t_zlim, t_col, t_state, offset, slot,
+):
+    """:func:`setup_triangles_slots` on borrowed arrays (as
+    :func:`setup_triangles_borrowed`)."""
+    return setup_triangles_slots(
+        borrow(xf), borrow(yf), borrow(zw), borrow(col), borrow(tris), borrow(src),
+        borrow(flat_col), borrow(states), borrow(culls), flat, want_colour,
+        borrow(t_edge), borrow(t_box), borrow(t_z), borrow(t_zlim), borrow(t_col),
+        borrow(t_state), offset, borrow(slot))
+
+
 @inline_ir
 def _setup_one(xf, yf, zw, col, tris, src, flat_col, state, cull, flat, want_colour,
                t_edge, t_box, t_z, t_zlim, t_col, t_state, t, n):
