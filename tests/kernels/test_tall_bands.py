@@ -107,7 +107,8 @@ def _render(cmds, nthreads, **switches):
 def _drawn(work):
     """The counters of fragments drawn.  The tile counters depend on the band
     height (as between thread counts): a triangle is classified by tiles where its
-    part in a band is large enough, and depth bounds are kept per band."""
+    part in a band is large enough, and depth and stencil bounds are kept per band
+    (with stencil_bounds on, fragments and stencil writes depend on it too)."""
     return {k: work[k] for k in ("fragments", "stencil_writes")}
 
 
@@ -129,22 +130,29 @@ def test_tall_bands_change_no_plane_and_no_counter(monkeypatch, nthreads):
                         or placed[-1])
     # Long runs of one state: calls of many triangles, whose records are placed.
     cmds = _scene(np.random.default_rng(40 + nthreads), 2500, group=20)
-    want, want_work = _render(cmds, nthreads, tall_bands=False)
-    assert taken and not any(taken) and not placed
-    tall_work = None
-    for records, slots in ((True, True), (False, True), (True, False)):
+    # Stencil bounds skip whole tiles, and tiles lie in bands: with them the count
+    # of fragments drawn depends on the band height too, so the drawn counters are
+    # compared with stencil_bounds off, the planes with it on and off.
+    for bounds in (True, False):
         taken.clear()
-        placed.clear()
-        got, work = _render(cmds, nthreads, tall_bands=True, band_records=records,
-                            band_slots=slots)
-        assert taken and all(taken)  # the scene is one of small triangles
-        # Records are placed by band where two tall bands read them in place.
-        assert any(placed) == (slots and nthreads == 2)
-        what = f"tall_bands, band_records={records}, band_slots={slots}, {nthreads} thread(s)"
-        assert_planes_equal(got, want, what)
-        assert _drawn(work) == _drawn(want_work), what
-        tall_work = tall_work or work
-        assert work == tall_work, what  # the same bands: every counter the same
+        want, want_work = _render(cmds, nthreads, tall_bands=False, stencil_bounds=bounds)
+        assert taken and not any(taken) and not placed
+        tall_work = None
+        for records, slots in ((True, True), (False, True), (True, False)):
+            taken.clear()
+            placed.clear()
+            got, work = _render(cmds, nthreads, tall_bands=True, band_records=records,
+                                band_slots=slots, stencil_bounds=bounds)
+            assert taken and all(taken)  # the scene is one of small triangles
+            # Records are placed by band where two tall bands read them in place.
+            assert any(placed) == (slots and nthreads == 2)
+            what = (f"tall_bands, band_records={records}, band_slots={slots}, "
+                    f"stencil_bounds={bounds}, {nthreads} thread(s)")
+            assert_planes_equal(got, want, what)
+            if not bounds:
+                assert _drawn(work) == _drawn(want_work), what
+            tall_work = tall_work or work
+            assert work == tall_work, what  # the same bands: every counter the same
     assert want_work["fragments"] > 5000
     if nthreads == 2:
         naive = render_naive(cmds, W, H, double=True, zbits=24, stencil=8)
