@@ -382,6 +382,86 @@ def clip_reference(clip_tri, viewport, w, h):
 # ------------------------------------------------------------------ switch checks
 
 
+def band_states(w, h, cull, ops, funcs, blend):
+    """The states of :func:`band_scene`: z only, z LESS with colour writes off, z +
+    stencil INCR/DECR, a stencil test with ONE+ONE blending, back-face culling and a
+    scissor (``cull``, ``ops``, ``funcs`` and ``blend``: the raster codes used)."""
+    incr, decr = ops
+    less, notequal = funcs
+    return [
+        full_state(w, h, zbuffer=True),
+        full_state(w, h, zbuffer=True, zfunc=less, wmpack=0),
+        full_state(w, h, zbuffer=True, zwritemask=0, wmpack=0, stencil=True,
+                   szpass=incr, spass=decr),
+        full_state(w, h, zbuffer=True, stencil=True, sfunc=notequal, sref=1,
+                   blend_sf=blend, blend_df=blend),
+        full_state(w, h, zbuffer=True, cull=cull),
+        full_state(w, h, zbuffer=True, scissor=(10, 70, 40, 250)),
+    ]
+
+
+def band_scene(rng, n, w, h, states, *, switch_below, point_above, line_above,
+               wide_below, dead_below, wide, small):
+    """A flush of mostly small triangles for the band-layout tests: ``n`` primitives,
+    each drawn by one uniform ``u``: the state switches among ``states`` where
+    ``u < switch_below``; a point where ``u > point_above``, else a line where
+    ``u > line_above``; else a triangle of half-size ``wide`` (crossing bands) where
+    ``u < wide_below``, zero-size where ``u < dead_below``, else of half-size
+    uniform in [1, ``small``).  A stencil clear half way."""
+    cmds = [("clear", {"color", "z", "stencil"},
+             {"color": 0x40302010, "z": 0x7FFFFF, "stencil": 1}, full_state(w, h))]
+    rs = states[0]
+    for k in range(n):
+        u = rng.random()
+        if u < switch_below:
+            rs = states[int(rng.integers(len(states)))]
+        if k == n // 2:
+            cmds.append(("clear", {"stencil"}, {"stencil": 2}, full_state(w, h)))
+        if u > point_above:
+            x, y = (float(v) for v in rng.uniform([0, 0], [w, h]))
+            cmds.append(("point", (x, y, 0.0, (1.0, 0.5, 0.0, 1.0)), rs))
+            continue
+        if u > line_above:
+            a = tuple(float(v) for v in rng.uniform([0, 0], [w, h]))
+            b = tuple(float(v) for v in rng.uniform([0, 0], [w, h]))
+            cmds.append(("line", [(a[0], a[1], 0.0, (0.0, 1.0, 0.0, 1.0)),
+                                  (b[0], b[1], 0.0, (0.0, 1.0, 0.0, 1.0))], rs))
+            continue
+        side = wide if u < wide_below else (0.0 if u < dead_below else
+                                            float(rng.uniform(1.0, small)))
+        c = rng.uniform([0, 0], [w, h])
+        z = float(rng.uniform(-4000, 4000))
+        tri = tuple((float(x), float(y), z + float(rng.uniform(-500, 500)),
+                     tuple(float(v) for v in rng.uniform(0, 1, 4)))
+                    for x, y in c + rng.uniform(-side, side, (3, 2)))
+        cmds.append(("triangle", tri, rs))
+    return cmds
+
+
+def render_switched(commands, w, h, *, cfg=None, init=None, nthreads=1, mode="span",
+                    **switches):
+    """Render ``commands`` through one CommandBatch on ``nthreads`` threads with the
+    batch's switches set as given (``tall_bands=False``, ...): ``(planes, work)``,
+    the planes of :func:`planes_of` and the batch's work counters.  ``cfg``: the
+    framebuffer's double/zbits/stencil (default double buffered, 24-bit z, 8-bit
+    stencil); ``mode`` as in :func:`kernel_batch`."""
+    from vgxsim import threads
+
+    keep = threads._override  # None: follow numba.set_num_threads
+    threads.set_threads(nthreads)
+    try:
+        fb = kernel_framebuffer(w, h, init=init,
+                                **(cfg or dict(double=True, zbits=24, stencil=8)))
+        batch = kernel_batch(fb, mode)
+        for name, value in switches.items():
+            setattr(batch, name, value)
+        queue_commands(batch, commands)
+        batch.flush()
+        return planes_of(fb), batch.work()
+    finally:
+        threads.set_threads(keep)
+
+
 def heidmann_images(monkeypatch, switch, nthreads, width=640, height=512):
     """The Heidmann 1991 example's frame (vgxsim.examples.heidmann1991) rendered with
     ``CommandBatch.<switch>`` off and on under ``nthreads`` threads: ``{False: img,

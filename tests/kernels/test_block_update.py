@@ -21,12 +21,11 @@ import pytest
 from kernel_helpers import (
     assert_planes_equal,
     full_state,
-    kernel_batch,
     kernel_framebuffer,
-    planes_of,
     queue_commands,
     random_planes,
     render_naive,
+    render_switched,
 )
 
 from vgxsim import threads
@@ -60,21 +59,10 @@ Z_PASS_OPS = [OP_INCR, OP_DECR, OP_KEEP, OP_REPLACE, OP_INVERT, OP_ZERO]
 
 
 def _render(cmds, cfg, init, nthreads=1, **switches):
-    keep = threads._override  # None: follow numba.set_num_threads (tests/kernels/test_threads.py)
-    threads.set_threads(nthreads)
-    try:
-        fb = kernel_framebuffer(W, H, init=init, **cfg)
-        batch = kernel_batch(fb)
-        # The depth-writing colour passes' block rows too (CommandBatch.span_zwrite
-        # leaves them out by default; the scenes below turn it on in turn).
-        switches.setdefault("span_zwrite", False)
-        for k, v in switches.items():
-            setattr(batch, k, v)
-        queue_commands(batch, cmds)
-        batch.flush()
-        return planes_of(fb), batch.work()
-    finally:
-        threads.set_threads(keep)
+    # The depth-writing colour passes' block rows too (CommandBatch.span_zwrite
+    # leaves them out by default; the scenes below turn it on in turn).
+    switches.setdefault("span_zwrite", False)
+    return render_switched(cmds, W, H, cfg=cfg, init=init, nthreads=nthreads, **switches)
 
 
 def _big(rng, zlo, zhi, flat=False):

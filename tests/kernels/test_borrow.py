@@ -19,14 +19,10 @@ import pytest
 from kernel_helpers import (
     assert_planes_equal,
     full_state,
-    kernel_batch,
-    kernel_framebuffer,
-    planes_of,
-    queue_commands,
     render_naive,
+    render_switched,
 )
 
-from vgxsim import threads
 from vgxsim.batch import CommandBatch
 from vgxsim.state.raster import BF_MSA, BF_ONE, BF_SA, CMP_EQUAL, CMP_LESS, OP_DECR, OP_INCR
 
@@ -75,16 +71,7 @@ def _scene(rng, n):
 
 
 def _render(cmds, nthreads, borrow):
-    threads.set_threads(nthreads)
-    try:
-        fb = kernel_framebuffer(W, H, double=True, zbits=24, stencil=8)
-        batch = kernel_batch(fb)
-        batch.borrow_arrays = borrow
-        queue_commands(batch, cmds)
-        batch.flush()
-        return planes_of(fb), batch.work()
-    finally:
-        threads.set_threads(None)
+    return render_switched(cmds, W, H, nthreads=nthreads, borrow_arrays=borrow)
 
 
 @pytest.mark.parametrize("nthreads", [1, 2])

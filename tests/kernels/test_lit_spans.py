@@ -20,15 +20,11 @@ from kernel_helpers import (
     assert_planes_equal,
     full_state,
     heidmann_images,
-    kernel_batch,
-    kernel_framebuffer,
-    planes_of,
-    queue_commands,
     random_planes,
     render_naive,
+    render_switched,
 )
 
-from vgxsim import threads
 from vgxsim.kernels.fragment import add_sat
 from vgxsim.kernels.lit import LIT_MIN_SPAN, add_sat_swar
 from vgxsim.state.raster import (
@@ -78,18 +74,7 @@ def test_add_sat_swar_equals_add_sat():
 
 
 def _render(cmds, cfg, init, nthreads=1, **switches):
-    keep = threads._override  # None: follow numba.set_num_threads
-    threads.set_threads(nthreads)
-    try:
-        fb = kernel_framebuffer(W, H, init=init, **cfg)
-        batch = kernel_batch(fb)
-        for k, v in switches.items():
-            setattr(batch, k, v)
-        queue_commands(batch, cmds)
-        batch.flush()
-        return planes_of(fb), batch.work()
-    finally:
-        threads.set_threads(keep)
+    return render_switched(cmds, W, H, cfg=cfg, init=init, nthreads=nthreads, **switches)
 
 
 def assert_switch_changes_no_plane(scene, switch, seed, rounds, naive_rounds):

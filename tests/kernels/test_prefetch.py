@@ -18,14 +18,10 @@ import pytest
 from kernel_helpers import (
     assert_planes_equal,
     full_state,
-    kernel_batch,
-    kernel_framebuffer,
-    planes_of,
-    queue_commands,
     render_naive,
+    render_switched,
 )
 
-from vgxsim import threads
 from vgxsim.batch import GATHER_MIN
 from vgxsim.state.raster import (
     BF_ONE,
@@ -83,16 +79,7 @@ def _scene(rng, n):
 
 
 def _render(cmds, nthreads, prefetch):
-    threads.set_threads(nthreads)
-    try:
-        fb = kernel_framebuffer(W, H, double=True, zbits=24, stencil=8)
-        batch = kernel_batch(fb)
-        batch.prefetch_planes = prefetch
-        queue_commands(batch, cmds)
-        batch.flush()
-        return planes_of(fb), batch.work()
-    finally:
-        threads.set_threads(None)
+    return render_switched(cmds, W, H, nthreads=nthreads, prefetch_planes=prefetch)
 
 
 @pytest.mark.parametrize("count", [900, GATHER_MIN + 1500])

@@ -14,30 +14,17 @@ from kernel_helpers import (
     assert_planes_equal,
     full_state,
     heidmann_images,
-    kernel_batch,
-    kernel_framebuffer,
-    planes_of,
-    queue_commands,
     render_naive,
+    render_switched,
 )
 from test_work_skipping import layered_scene
 
-from vgxsim import threads
 from vgxsim.state.raster import CMP_GEQUAL, CMP_GREATER, CMP_LEQUAL, CMP_LESS, OP_INCR
 
 
 def _render(cmds, w, h, cfg, init, on, mode="span", nthreads=1):
-    keep = threads._override
-    threads.set_threads(nthreads)
-    try:
-        fb = kernel_framebuffer(w, h, init=init, **cfg)
-        batch = kernel_batch(fb, mode)
-        batch.sided_bounds = on
-        queue_commands(batch, cmds)
-        batch.flush()
-        return planes_of(fb), batch.work()
-    finally:
-        threads.set_threads(keep)
+    return render_switched(cmds, w, h, cfg=cfg, init=init, nthreads=nthreads, mode=mode,
+                           sided_bounds=on)
 
 
 def test_sided_bounds_change_no_plane_on_layered_scenes():

@@ -15,15 +15,11 @@ import pytest
 from kernel_helpers import (
     assert_planes_equal,
     full_state,
-    kernel_batch,
-    kernel_framebuffer,
-    planes_of,
-    queue_commands,
     render_naive,
+    render_switched,
 )
 
 import vgxsim.kernels.small as small
-from vgxsim import threads
 from vgxsim.state.raster import (
     BF_MSA,
     BF_ONE,
@@ -89,17 +85,7 @@ def _scene(rng, n):
 
 
 def _render(cmds, nthreads, **switches):
-    threads.set_threads(nthreads)
-    try:
-        fb = kernel_framebuffer(W, H, double=True, zbits=24, stencil=8)
-        batch = kernel_batch(fb)
-        for k, v in switches.items():
-            setattr(batch, k, v)
-        queue_commands(batch, cmds)
-        batch.flush()
-        return planes_of(fb), batch.work()
-    finally:
-        threads.set_threads(None)  # follow numba again (not an override of its count)
+    return render_switched(cmds, W, H, nthreads=nthreads, **switches)
 
 
 @pytest.mark.parametrize("seed", range(2))

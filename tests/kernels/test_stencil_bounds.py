@@ -18,31 +18,18 @@ from kernel_helpers import (
     assert_planes_equal,
     full_state,
     heidmann_images,
-    kernel_batch,
-    kernel_framebuffer,
-    planes_of,
-    queue_commands,
     render_naive,
+    render_switched,
 )
 from test_work_skipping import layered_scene
 
-from vgxsim import threads
 from vgxsim.batch import WORK_NAMES, CommandBatch
 from vgxsim.state.raster import BF_ONE, CMP_ALWAYS, CMP_EQUAL, CMP_LESS, OP_INCR
 
 
 def _render(cmds, w, h, cfg, init, on, mode="span", nthreads=1):
-    keep = threads._override
-    threads.set_threads(nthreads)
-    try:
-        fb = kernel_framebuffer(w, h, init=init, **cfg)
-        batch = kernel_batch(fb, mode)
-        batch.stencil_bounds = on
-        queue_commands(batch, cmds)
-        batch.flush()
-        return planes_of(fb), batch.work()
-    finally:
-        threads.set_threads(keep)
+    return render_switched(cmds, w, h, cfg=cfg, init=init, nthreads=nthreads, mode=mode,
+                           stencil_bounds=on)
 
 
 def test_stencil_bounds_change_no_plane_on_layered_scenes():

@@ -18,12 +18,11 @@ import numpy as np
 import pytest
 from kernel_helpers import (
     assert_planes_equal,
+    band_scene,
+    band_states,
     full_state,
-    kernel_batch,
-    kernel_framebuffer,
-    planes_of,
-    queue_commands,
     render_naive,
+    render_switched,
 )
 
 from vgxsim import batch as batch_mod
@@ -44,64 +43,22 @@ W, H = 90, 300  # tall: one band of 512 rows on one thread, 256 + 44 rows on two
 
 
 def _states():
-    return [
-        full_state(W, H, zbuffer=True),
-        full_state(W, H, zbuffer=True, zfunc=CMP_LESS, wmpack=0),
-        full_state(W, H, zbuffer=True, zwritemask=0, wmpack=0, stencil=True,
-                   szpass=OP_INCR, spass=OP_DECR),
-        full_state(W, H, zbuffer=True, stencil=True, sfunc=CMP_NOTEQUAL, sref=1,
-                   blend_sf=BF_ONE, blend_df=BF_ONE),
-        full_state(W, H, zbuffer=True, cull=CULL_BACK),
-        full_state(W, H, zbuffer=True, scissor=(10, 70, 40, 250)),
+    return band_states(W, H, CULL_BACK, (OP_INCR, OP_DECR), (CMP_LESS, CMP_NOTEQUAL),
+                       BF_ONE) + [
         full_state(W, H),  # no z test: the last triangle drawn on a pixel is its colour
     ]
 
 
 def _scene(rng, n, group=1):
-    states = _states()
-    cmds = [("clear", {"color", "z", "stencil"},
-             {"color": 0x40302010, "z": 0x7FFFFF, "stencil": 1}, full_state(W, H))]
-    rs = states[0]
-    for k in range(n):
-        u = rng.random()
-        if u < 0.1 / group:
-            rs = states[int(rng.integers(len(states)))]
-        if k == n // 2:
-            cmds.append(("clear", {"stencil"}, {"stencil": 2}, full_state(W, H)))
-        if u > 0.995:
-            x, y = (float(v) for v in rng.uniform([0, 0], [W, H]))
-            cmds.append(("point", (x, y, 0.0, (1.0, 0.5, 0.0, 1.0)), rs))
-            continue
-        if u > 0.99:
-            a = tuple(float(v) for v in rng.uniform([0, 0], [W, H]))
-            b = tuple(float(v) for v in rng.uniform([0, 0], [W, H]))
-            cmds.append(("line", [(a[0], a[1], 0.0, (0.0, 1.0, 0.0, 1.0)),
-                                  (b[0], b[1], 0.0, (0.0, 1.0, 0.0, 1.0))], rs))
-            continue
-        # Mostly a few pixels; 1 % wide (crossing the two-thread bands' edge at row
-        # 256), 1 % zero-size.
-        side = 80.0 if u < 0.01 else (0.0 if u < 0.02 else float(rng.uniform(1.0, 4.0)))
-        c = rng.uniform([0, 0], [W, H])
-        z = float(rng.uniform(-4000, 4000))
-        tri = tuple((float(x), float(y), z + float(rng.uniform(-500, 500)),
-                     tuple(float(v) for v in rng.uniform(0, 1, 4)))
-                    for x, y in c + rng.uniform(-side, side, (3, 2)))
-        cmds.append(("triangle", tri, rs))
-    return cmds
+    # Mostly a few pixels; 1 % wide (crossing the two-thread bands' edge at row
+    # 256), 1 % zero-size.
+    return band_scene(rng, n, W, H, _states(), switch_below=0.1 / group,
+                      point_above=0.995, line_above=0.99, wide_below=0.01,
+                      dead_below=0.02, wide=80.0, small=4.0)
 
 
 def _render(cmds, nthreads, **switches):
-    threads.set_threads(nthreads)
-    try:
-        fb = kernel_framebuffer(W, H, double=True, zbits=24, stencil=8)
-        batch = kernel_batch(fb)
-        for k, v in switches.items():
-            setattr(batch, k, v)
-        queue_commands(batch, cmds)
-        batch.flush()
-        return planes_of(fb), batch.work()
-    finally:
-        threads.set_threads(None)  # follow numba again (not an override of its count)
+    return render_switched(cmds, W, H, nthreads=nthreads, **switches)
 
 
 def _drawn(work):
