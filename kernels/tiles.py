@@ -109,22 +109,31 @@ def _plane_at(z0, dzdx, dzdy, x0, y0, x, y):
     return za + dzdx * (x - x0)
 
 
-@callee
-def scan_tile(zbuf, tx, y_lo, y_hi, tb, i):
-    """Exact depth bounds of tile column ``tx`` over rows ``[y_lo, y_hi]`` into ``tb[i]``."""
+@inline
+def _plane_bounds(plane, tx, y_lo, y_hi):
+    """(min, max) of ``plane`` over tile column ``tx``, rows ``[y_lo, y_hi]``.
+
+    On the stored values themselves, indexed in place: for the int32 z plane
+    vpminsd / vpmaxsd on eight lanes (AVX2 has no packed int64 min or max), for the
+    stencil bytes vpminub / vpmaxub on 32; no row view (whose reference count costs
+    two atomic updates per row)."""
     x0 = tx << TILE_SHIFT
-    x1 = min(x0 + TILE_W, zbuf.shape[1]) - 1
-    # On the int32 values themselves, indexed in place: vpminsd / vpmaxsd on eight
-    # lanes (AVX2 has no packed int64 min or max) and no row view (whose reference
-    # count costs two atomic updates per row).
-    lo = zbuf[y_lo, x0]
+    x1 = min(x0 + TILE_W, plane.shape[1]) - 1
+    lo = plane[y_lo, x0]
     hi = lo
     for y in range(y_lo, y_hi + 1):
         uy = np.uintp(y)
         for x in range(x0, x1 + 1):
-            v = zbuf[uy, np.uintp(x)]
+            v = plane[uy, np.uintp(x)]
             lo = min(lo, v)
             hi = max(hi, v)
+    return lo, hi
+
+
+@callee
+def scan_tile(zbuf, tx, y_lo, y_hi, tb, i):
+    """Exact depth bounds of tile column ``tx`` over rows ``[y_lo, y_hi]`` into ``tb[i]``."""
+    lo, hi = _plane_bounds(zbuf, tx, y_lo, y_hi)
     tb[i, TB_VALID] = TB_EXACT
     tb[i, TB_LO] = lo
     tb[i, TB_HI] = hi
@@ -134,17 +143,8 @@ def scan_tile(zbuf, tx, y_lo, y_hi, tb, i):
 @callee
 def scan_stencil(sten, tx, y_lo, y_hi, tb, i):
     """Exact stencil bounds of tile column ``tx`` over rows ``[y_lo, y_hi]`` into
-    ``tb[i]`` (on the bytes themselves: vpminub / vpmaxub on 32 lanes)."""
-    x0 = tx << TILE_SHIFT
-    x1 = min(x0 + TILE_W, sten.shape[1]) - 1
-    lo = sten[y_lo, x0]
-    hi = lo
-    for y in range(y_lo, y_hi + 1):
-        uy = np.uintp(y)
-        for x in range(x0, x1 + 1):
-            v = sten[uy, np.uintp(x)]
-            lo = min(lo, v)
-            hi = max(hi, v)
+    ``tb[i]``."""
+    lo, hi = _plane_bounds(sten, tx, y_lo, y_hi)
     tb[i, TB_SVALID] = TB_EXACT
     tb[i, TB_SLO] = lo
     tb[i, TB_SHI] = hi

@@ -1111,21 +1111,28 @@ def _rebase(ctx, blk: ReplayBlock, mvp) -> None:
     blk.states, blk.mvp, blk.generation = states, mvp, table.generation
 
 
+def _keep_key(blk, ctx) -> None:
+    """Store the caller's state that a :class:`ReplayBlock` or :class:`ParentBlock`
+    is keyed by (their ``ctx`` to ``lmcolor_set`` attributes), before the call.
+    (The replays compare them inline: they are the callobj fast path.)"""
+    blk.ctx = ctx
+    blk.entry_snap = ctx.raster.snapshot()
+    blk.mvp = ctx.matrices.mvp()
+    blk.depth, blk.concave = ctx.depth_range, ctx.concave
+    blk.vertex_serial, blk.rgb = ctx.vertex_serial, ctx.config.rgb
+    blk.lmcolor_mode = ctx.lmcolor_mode  # (in the token too; a program may set it alone)
+    blk.token = ctx.states.lighting_token(ctx)
+    blk.colour, blk.normal = ctx.colour, ctx.normal
+    blk.last_sent, blk.lmcolor_set = ctx.last_sent, ctx.lmcolor_set
+
+
 def _trace(ctx, dobj: DisplayObject) -> None:
     """callobj of a replayable object, segment by segment as the general replay does
     it, keeping what it appends and leaves as the object's :class:`ReplayBlock`
     (only when nothing flushed the stream meanwhile)."""
     regs, st, table = ctx.raster, ctx.stream, ctx.states
     blk = ReplayBlock()
-    blk.ctx = ctx
-    blk.entry_snap = regs.snapshot()
-    blk.mvp = ctx.matrices.mvp()
-    blk.depth, blk.concave = ctx.depth_range, ctx.concave
-    blk.vertex_serial, blk.rgb = ctx.vertex_serial, ctx.config.rgb
-    blk.lmcolor_mode = ctx.lmcolor_mode  # (in the token too; a program may set it alone)
-    blk.token = table.lighting_token(ctx)
-    blk.colour, blk.normal = ctx.colour, ctx.normal
-    blk.last_sent, blk.lmcolor_set = ctx.last_sent, ctx.lmcolor_set
+    _keep_key(blk, ctx)
     generation, parts = table.generation, len(st.parts)
     start = None
     states = []
@@ -1358,15 +1365,7 @@ def _trace_parent(ctx, obj: int, dobj: DisplayObject) -> None:
         return
     regs, st, table = ctx.raster, ctx.stream, ctx.states
     blk = ParentBlock()
-    blk.ctx = ctx
-    blk.entry_snap = regs.snapshot()
-    blk.mvp = ctx.matrices.mvp()
-    blk.depth, blk.concave = ctx.depth_range, ctx.concave
-    blk.vertex_serial, blk.rgb = ctx.vertex_serial, ctx.config.rgb
-    blk.lmcolor_mode = ctx.lmcolor_mode
-    blk.token = table.lighting_token(ctx)
-    blk.colour, blk.normal = ctx.colour, ctx.normal
-    blk.last_sent, blk.lmcolor_set = ctx.last_sent, ctx.lmcolor_set
+    _keep_key(blk, ctx)
     blk.st_colour, blk.st_normal, blk.st_sent, blk.st_lms = (st.colour, st.normal, st.sent,
                                                              st.lmcolor_set)
     blk.inner = inner
